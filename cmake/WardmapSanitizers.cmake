@@ -1,0 +1,12 @@
+# -DWARDMAP_SANITIZE=address,undefined  or  -DWARDMAP_SANITIZE=thread  (use a separate build dir).
+if(WARDMAP_SANITIZE)
+  if(WARDMAP_SANITIZE MATCHES "thread" AND WARDMAP_SANITIZE MATCHES "address")
+    message(FATAL_ERROR "WARDMAP_SANITIZE: thread cannot be combined with address")
+  endif()
+  message(STATUS "wardmap: sanitizers ${WARDMAP_SANITIZE}")
+  add_compile_options(-fsanitize=${WARDMAP_SANITIZE} -fno-omit-frame-pointer -g -O1)
+  add_link_options(-fsanitize=${WARDMAP_SANITIZE})
+  if(WARDMAP_SANITIZE MATCHES "undefined")
+    add_compile_options(-fno-sanitize-recover=undefined)
+  endif()
+endif()
