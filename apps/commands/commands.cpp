@@ -1,0 +1,10 @@
+#include "apps/commands/commands.h"
+
+namespace wardmap::apps {
+
+void register_commands(CLI::App& app) {
+  add_info_command(app);
+  add_eval_command(app);
+}
+
+}  // namespace wardmap::apps

@@ -1,0 +1,13 @@
+// The sub-commands of the wardmap executable; each file under apps/commands adds one.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace wardmap::apps {
+
+void register_commands(CLI::App& app);
+
+void add_info_command(CLI::App& app);
+void add_eval_command(CLI::App& app);
+
+}  // namespace wardmap::apps

@@ -1,0 +1,130 @@
+// wardmap eval --gt <file|dataset> --est <file>: ATE, RPE and tracking rate (EVALUATION.md).
+#include <spdlog/spdlog.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <memory>
+
+#include "apps/commands/commands.h"
+#include "apps/common.h"
+#include "slam/core/errors.h"
+#include "slam/eval/trajectory_eval.h"
+#include "slam/eval/trajectory_plot.h"
+#include "slam/io/sequence.h"
+#include "slam/io/text_file.h"
+#include "slam/io/trajectory_io.h"
+
+namespace wardmap::apps {
+
+namespace fs = std::filesystem;
+using slam::Trajectory;
+
+namespace {
+
+struct EvalArgs {
+  std::string gt, est, align = "sim3", json, plot, est_format = "auto", format;
+  double max_dt = 0.02;
+  int rpe_delta = 1;
+  double rate = 30.0;
+  std::string kitti_camera;
+};
+
+nlohmann::json stats_json(const slam::eval::ErrorStats& s) {
+  return {{"rmse", s.rmse}, {"mean", s.mean}, {"median", s.median}, {"max", s.max}, {"min", s.min}, {"std", s.std}};
+}
+
+void run_eval(const EvalArgs& a) {
+  const auto alignment = slam::eval::parse_alignment(a.align);
+  // Ground truth: a pose file, or a dataset folder whose ground truth is read by its reader.
+  Trajectory gt;
+  std::unique_ptr<slam::io::SequenceReader> sequence;
+  if (fs::is_directory(a.gt)) {
+    sequence = slam::io::open_sequence(a.gt, reader_options(a.format, a.rate, a.kitti_camera));
+    gt = sequence->ground_truth();
+    if (gt.empty()) throw InputError(a.gt, "the sequence has no ground truth");
+  } else {
+    gt = slam::io::read_trajectory(a.gt, slam::io::PoseFormat::Auto);
+  }
+  Trajectory est = slam::io::read_trajectory(a.est, slam::io::parse_pose_format(a.est_format));
+  if (est.indexed && sequence) {
+    // A KITTI-format estimate has one pose per frame: give it the frames' timestamps.
+    if (est.size() > sequence->size())
+      throw InputError(a.est, "has " + std::to_string(est.size()) + " poses for a sequence of " +
+                                  std::to_string(sequence->size()) + " frames");
+    for (size_t i = 0; i < est.size(); ++i) est.timestamps[i] = sequence->timestamp(i);
+    est.indexed = false;
+  }
+  if (gt.indexed != est.indexed)
+    spdlog::warn("one file has no timestamps (KITTI format): poses are paired by their position in the files; "
+                 "give the dataset folder to --gt to pair by time");
+
+  slam::eval::AssociationOptions assoc;
+  assoc.max_dt = a.max_dt;
+  const auto pairs = slam::eval::associate(gt, est, assoc);
+  if (pairs.size() < 3 && alignment != slam::eval::Alignment::None)
+    throw InputError(a.est, "only " + std::to_string(pairs.size()) +
+                                " poses pair with the ground truth (within " + std::to_string(a.max_dt) +
+                                " s); at least 3 are needed to align");
+  if (pairs.empty()) throw InputError(a.est, "no pose pairs with the ground truth within the time window");
+  const auto ate = slam::eval::compute_ate(gt, est, pairs, alignment);
+  const auto rpe = slam::eval::compute_rpe(gt, est, pairs, a.rpe_delta, ate.scale);
+  const double rate = slam::eval::tracking_rate(gt, est, assoc);
+
+  std::printf("ground truth:   %s (%zu poses)\n", a.gt.c_str(), gt.size());
+  std::printf("estimate:       %s (%zu poses)\n", a.est.c_str(), est.size());
+  std::printf("pairs:          %zu (max dt %.3f s)\n", pairs.size(), a.max_dt);
+  std::printf("alignment:      %s, scale %.9f\n", a.align.c_str(), ate.scale);
+  std::printf("ATE RMSE:       %.9f m\n", ate.stats.rmse);
+  std::printf("ATE mean/median/max: %.6f / %.6f / %.6f m\n", ate.stats.mean, ate.stats.median, ate.stats.max);
+  std::printf("RPE (%d frame):  %.6f m, %.6f deg (RMSE)\n", rpe.delta, rpe.translation.rmse, rpe.rotation_deg.rmse);
+  std::printf("tracking rate:  %.2f %%\n", rate);
+
+  if (!a.json.empty()) {
+    const auto& T = ate.transform;
+    nlohmann::json j = {{"ground_truth", a.gt}, {"estimate", a.est}, {"alignment", a.align}, {"max_dt", a.max_dt},
+                        {"poses_ground_truth", gt.size()}, {"poses_estimate", est.size()}, {"pairs", pairs.size()},
+                        {"scale", ate.scale}, {"ate", stats_json(ate.stats)},
+                        {"rpe", {{"delta_frames", rpe.delta}, {"count", rpe.count},
+                                 {"translation", stats_json(rpe.translation)}, {"rotation_deg", stats_json(rpe.rotation_deg)}}},
+                        {"tracking_rate", rate},
+                        {"transform", {{"scale", T.scale()},
+                                       {"rotation_xyzw", {T.rotation().x(), T.rotation().y(), T.rotation().z(), T.rotation().w()}},
+                                       {"translation", {T.translation().x(), T.translation().y(), T.translation().z()}}}}};
+    slam::io::write_file_atomic(a.json, j.dump(2) + "\n");
+  }
+  if (!a.plot.empty()) {
+    slam::eval::PlotSeries g{"ground truth", {}, cv::Scalar(40, 40, 40)};
+    slam::eval::PlotSeries e{"estimate (" + a.align + " aligned)", {}, cv::Scalar(30, 60, 220)};
+    for (const auto& p : gt.poses) g.points.push_back(p.translation());
+    for (const auto& p : est.poses) e.points.push_back(ate.transform * p.translation());
+    char title[200];
+    std::snprintf(title, sizeof title, "ATE RMSE %.3f m (%s, scale %.3f), %zu pairs, tracked %.1f %%", ate.stats.rmse,
+                  a.align.c_str(), ate.scale, pairs.size(), rate);
+    slam::eval::save_png(a.plot, slam::eval::plot_top_view({g, e}, title));
+  }
+}
+
+}  // namespace
+
+void add_eval_command(CLI::App& app) {
+  auto args = std::make_shared<EvalArgs>();
+  auto* cmd = app.add_subcommand(
+      "eval",
+      "Evaluate an estimated trajectory against ground truth: ATE (RMSE, mean, median, max) after Umeyama alignment,\n"
+      "RPE and tracking rate, as defined in docs/EVALUATION.md. Pose files: TUM (8 values a line) or KITTI (12).");
+  cmd->add_option("--gt", args->gt, "Ground truth: a TUM or KITTI pose file, or a dataset folder")->required();
+  cmd->add_option("--est", args->est, "Estimated trajectory: a TUM or KITTI pose file")->required();
+  cmd->add_option("--align", args->align, "Alignment: sim3 (monocular), se3 (RGB-D, stereo) or none")->capture_default_str()
+      ->check(CLI::IsMember({"sim3", "se3", "none"}));
+  cmd->add_option("--max-dt", args->max_dt, "Largest time difference for a pose pair (s)")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--rpe-delta", args->rpe_delta, "Frame gap of the relative pose error")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--est-format", args->est_format, "Format of the estimate file")->capture_default_str()
+      ->check(CLI::IsMember({"auto", "tum", "kitti"}));
+  cmd->add_option("--json", args->json, "Write the figures as JSON to this file");
+  cmd->add_option("--plot", args->plot, "Draw the aligned estimate over the ground truth (top view) to this PNG");
+  add_reader_options(cmd, args->format, args->rate, args->kitti_camera);
+  cmd->callback([args] { run_eval(*args); });
+}
+
+}  // namespace wardmap::apps

@@ -1,0 +1,157 @@
+#include "slam/io/sequence.h"
+
+#include <algorithm>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+
+#include "slam/core/errors.h"
+
+namespace wardmap::slam::io {
+
+namespace fs = std::filesystem;
+
+std::string to_string(DatasetKind kind) {
+  switch (kind) {
+    case DatasetKind::TumRgbd: return "TUM RGB-D";
+    case DatasetKind::Kitti: return "KITTI odometry";
+    case DatasetKind::Euroc: return "EuRoC";
+    case DatasetKind::SevenScenes: return "7-Scenes";
+    case DatasetKind::ImageFolder: return "image folder";
+    case DatasetKind::Video: return "video";
+  }
+  return "unknown";
+}
+
+DatasetKind parse_dataset_kind(const std::string& name) {
+  if (name == "tum") return DatasetKind::TumRgbd;
+  if (name == "kitti") return DatasetKind::Kitti;
+  if (name == "euroc") return DatasetKind::Euroc;
+  if (name == "7scenes") return DatasetKind::SevenScenes;
+  if (name == "folder") return DatasetKind::ImageFolder;
+  if (name == "video") return DatasetKind::Video;
+  throw std::invalid_argument("unknown format '" + name + "' (allowed: tum, kitti, euroc, 7scenes, folder, video)");
+}
+
+cv::Mat load_image(const fs::path& file) {
+  if (!fs::exists(file)) throw InputError(file.string(), "image file not found");
+  cv::Mat img = cv::imread(file.string(), cv::IMREAD_UNCHANGED);
+  if (img.empty()) throw InputError(file.string(), "cannot decode the image (corrupt or not an image)");
+  if (img.depth() == CV_16U) img.convertTo(img, CV_8U, 1.0 / 256);
+  if (img.depth() != CV_8U) throw InputError(file.string(), "unsupported pixel type (expected 8 or 16 bit)");
+  if (img.channels() == 4) cv::cvtColor(img, img, cv::COLOR_BGRA2BGR);
+  return img;
+}
+
+cv::Mat load_depth(const fs::path& file, double factor, int invalid) {
+  if (!fs::exists(file)) throw InputError(file.string(), "depth file not found");
+  cv::Mat raw = cv::imread(file.string(), cv::IMREAD_ANYDEPTH);
+  if (raw.empty()) throw InputError(file.string(), "cannot decode the depth image");
+  if (raw.type() != CV_16UC1) throw InputError(file.string(), "depth must be a 16-bit single-channel PNG");
+  cv::Mat depth;
+  raw.convertTo(depth, CV_32F, 1.0 / factor);
+  if (invalid >= 0) depth.setTo(0.0f, raw == invalid);
+  return depth;
+}
+
+Frame SequenceReader::read(size_t i) {
+  const Entry& e = entries_.at(i);
+  Frame f;
+  f.index = i;
+  f.timestamp = e.timestamp;
+  f.image_path = e.image;
+  f.image = load_image(e.image);
+  if (f.image.cols != info_.width || f.image.rows != info_.height)
+    throw InputError(e.image.string(), "image is " + std::to_string(f.image.cols) + "x" + std::to_string(f.image.rows) +
+                                           ", the sequence's first image is " + std::to_string(info_.width) + "x" +
+                                           std::to_string(info_.height));
+  if (!e.depth.empty())
+    f.depth = load_depth(e.depth, info_.depth_factor, info_.kind == DatasetKind::SevenScenes ? 65535 : -1);
+  f.gt_pose = e.gt_pose;
+  return f;
+}
+
+void SequenceReader::finish_opening() {
+  if (entries_.empty()) throw InputError(info_.root.string(), "the sequence has no frames");
+  const cv::Mat first = load_image(entries_.front().image);
+  info_.width = first.cols;
+  info_.height = first.rows;
+  info_.frame_count = entries_.size();
+  const double span = entries_.back().timestamp - entries_.front().timestamp;
+  if (entries_.size() > 1 && span > 0) info_.measured_fps = (entries_.size() - 1) / span;
+  if (info_.fps <= 0) info_.fps = info_.measured_fps;
+  info_.duration = span + (info_.fps > 0 ? 1.0 / info_.fps : 0.0);
+  info_.frames_with_ground_truth =
+      std::count_if(entries_.begin(), entries_.end(), [](const Entry& e) { return e.gt_pose.has_value(); });
+  info_.has_ground_truth = info_.frames_with_ground_truth > 0;
+  info_.has_depth = !entries_.front().depth.empty();
+}
+
+void SequenceReader::attach_ground_truth_by_time(double max_dt) {
+  const auto& ts = ground_truth_.timestamps;
+  if (ts.empty()) return;
+  for (Entry& e : entries_) {
+    auto it = std::lower_bound(ts.begin(), ts.end(), e.timestamp);
+    size_t best = ts.size();
+    double best_dt = max_dt;
+    for (auto c : {it, it == ts.begin() ? it : it - 1}) {
+      if (c == ts.end()) continue;
+      const double dt = std::abs(*c - e.timestamp);
+      if (dt <= best_dt) {
+        best_dt = dt;
+        best = static_cast<size_t>(c - ts.begin());
+      }
+    }
+    if (best < ts.size()) e.gt_pose = ground_truth_.poses[best];
+  }
+}
+
+static bool has_image_extension(const fs::path& p) {
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp" || ext == ".pgm" || ext == ".ppm" ||
+         ext == ".tif" || ext == ".tiff";
+}
+
+static bool has_video_extension(const fs::path& p) {
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  return ext == ".mp4" || ext == ".avi" || ext == ".mkv" || ext == ".mov" || ext == ".webm" || ext == ".mpg";
+}
+
+DatasetKind detect_dataset_kind(const fs::path& path) {
+  if (!fs::exists(path)) throw InputError(path.string(), "no such file or folder");
+  if (fs::is_regular_file(path)) {
+    if (has_video_extension(path)) return DatasetKind::Video;
+    throw InputError(path.string(), "a file that is not a video (.mp4 .avi .mkv .mov .webm .mpg); give a dataset folder");
+  }
+  if (fs::exists(path / "rgb.txt")) return DatasetKind::TumRgbd;
+  if (fs::exists(path / "mav0") || fs::exists(path / "cam0" / "data.csv")) return DatasetKind::Euroc;
+  if (fs::exists(path / "sequences") || fs::exists(path / "image_0") || fs::exists(path / "image_2"))
+    return DatasetKind::Kitti;
+  if (fs::exists(path / "frame-000000.color.png") || fs::exists(path / "frame-000000.color.jpg"))
+    return DatasetKind::SevenScenes;
+  for (const auto& e : fs::directory_iterator(path))
+    if (e.is_regular_file() && has_image_extension(e.path())) return DatasetKind::ImageFolder;
+  throw InputError(path.string(),
+                   "unknown layout: expected rgb.txt (TUM RGB-D), sequences/ or image_0/ (KITTI), mav0/ (EuRoC), "
+                   "frame-000000.color.* (7-Scenes), or a folder of images");
+}
+
+std::unique_ptr<SequenceReader> open_sequence(const fs::path& path, const ReaderOptions& options) {
+  if (!fs::exists(path)) throw InputError(path.string(), "no such file or folder");
+  const DatasetKind kind = options.kind ? *options.kind : detect_dataset_kind(path);
+  switch (kind) {
+    case DatasetKind::TumRgbd: return open_tum(path, options);
+    case DatasetKind::Kitti: return open_kitti(path, options);
+    case DatasetKind::Euroc: return open_euroc(path, options);
+    case DatasetKind::SevenScenes: return open_seven_scenes(path, options);
+    case DatasetKind::ImageFolder: return open_image_folder(path, options);
+    case DatasetKind::Video: return open_video(path, options);
+  }
+  throw InputError(path.string(), "unsupported dataset kind");
+}
+
+bool is_image_file(const fs::path& p) { return has_image_extension(p); }
+
+}  // namespace wardmap::slam::io

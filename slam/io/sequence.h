@@ -1,0 +1,104 @@
+// Sequence readers: every dataset is opened as a list of frame entries (timestamp, image path,
+// optional depth path, optional ground-truth pose); images are decoded only when a frame is read,
+// so a sequence is never held in memory.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "slam/core/camera.h"
+#include "slam/core/trajectory.h"
+
+namespace wardmap::slam::io {
+
+enum class DatasetKind { TumRgbd, Kitti, Euroc, SevenScenes, ImageFolder, Video };
+
+std::string to_string(DatasetKind kind);
+// "tum" | "kitti" | "euroc" | "7scenes" | "folder" | "video"; throws std::invalid_argument otherwise.
+DatasetKind parse_dataset_kind(const std::string& name);
+
+struct Frame {
+  size_t index = 0;
+  double timestamp = 0;
+  cv::Mat image;                 // as stored: 8-bit grey or BGR
+  cv::Mat depth;                 // CV_32F metres, 0 = invalid; empty when the sequence has no depth
+  std::optional<SE3> gt_pose;    // camera-to-world, when the dataset has ground truth for this frame
+  std::filesystem::path image_path;
+};
+
+struct SequenceInfo {
+  DatasetKind kind = DatasetKind::ImageFolder;
+  std::filesystem::path root;
+  size_t frame_count = 0;
+  double fps = 0;                // nominal frame rate
+  double measured_fps = 0;       // (frames - 1) / (last - first timestamp)
+  double duration = 0;           // last - first timestamp + one frame period, seconds
+  int width = 0, height = 0;
+  std::optional<PinholeCamera> calibration;  // when the dataset itself carries one
+  std::string calibration_source;            // file it came from
+  bool has_depth = false;
+  double depth_factor = 0;       // raw depth units per metre
+  bool has_ground_truth = false;
+  size_t frames_with_ground_truth = 0;
+  std::string notes;             // e.g. frames dropped by RGB/depth association
+};
+
+struct ReaderOptions {
+  std::optional<DatasetKind> kind;   // --format; detected from the layout when absent
+  double max_dt = 0.02;              // TUM rgb/depth and ground-truth association window (s)
+  double rate = 30.0;                // image folder: frames per second
+  std::string kitti_camera;          // "image_0" | "image_2"; empty: image_0 if present
+  std::optional<double> depth_factor;  // overrides the dataset's default
+};
+
+class SequenceReader {
+ public:
+  virtual ~SequenceReader() = default;
+  const SequenceInfo& info() const { return info_; }
+  size_t size() const { return entries_.size(); }
+  double timestamp(size_t i) const { return entries_.at(i).timestamp; }
+  // Decodes frame i; throws InputError naming the image file when it is missing or unreadable.
+  virtual Frame read(size_t i);
+  // The ground-truth trajectory as the dataset gives it (may be denser than the frames).
+  const Trajectory& ground_truth() const { return ground_truth_; }
+
+ protected:
+  struct Entry {
+    double timestamp = 0;
+    std::filesystem::path image, depth;
+    std::optional<SE3> gt_pose;
+  };
+  // Fills info_.width/height from the first image, duration, counts; call at the end of opening.
+  void finish_opening();
+  // Attaches to each entry the ground-truth pose closest in time within max_dt.
+  void attach_ground_truth_by_time(double max_dt);
+
+  SequenceInfo info_;
+  std::vector<Entry> entries_;
+  Trajectory ground_truth_;
+};
+
+// Opens a sequence, detecting its kind from the folder layout unless options.kind is set.
+// Throws InputError (unknown layout, malformed index files, missing files) naming the file.
+std::unique_ptr<SequenceReader> open_sequence(const std::filesystem::path& path, const ReaderOptions& options = {});
+DatasetKind detect_dataset_kind(const std::filesystem::path& path);
+
+// One per layout (sequence_*.cpp).
+std::unique_ptr<SequenceReader> open_tum(const std::filesystem::path& root, const ReaderOptions& o);
+std::unique_ptr<SequenceReader> open_kitti(const std::filesystem::path& root, const ReaderOptions& o);
+std::unique_ptr<SequenceReader> open_euroc(const std::filesystem::path& root, const ReaderOptions& o);
+std::unique_ptr<SequenceReader> open_seven_scenes(const std::filesystem::path& root, const ReaderOptions& o);
+std::unique_ptr<SequenceReader> open_image_folder(const std::filesystem::path& root, const ReaderOptions& o);
+std::unique_ptr<SequenceReader> open_video(const std::filesystem::path& file, const ReaderOptions& o);
+
+// Shared by the readers: a readable image or an InputError naming it.
+cv::Mat load_image(const std::filesystem::path& file);
+// uint16 depth PNG to metres (0 = invalid); `invalid` raw values (e.g. 65535) are zeroed too.
+cv::Mat load_depth(const std::filesystem::path& file, double factor, int invalid = -1);
+
+}  // namespace wardmap::slam::io

@@ -1,0 +1,83 @@
+// Microsoft 7-Scenes: frame-NNNNNN.color.(jpg|png), frame-NNNNNN.depth.png (uint16 mm, 65535 invalid),
+// frame-NNNNNN.pose.txt (4x4 camera-to-world); 30 Hz, frame N has timestamp N / 30 s.
+#include <cstdio>
+
+#include "slam/core/errors.h"
+#include "slam/io/sequence.h"
+#include "slam/io/text_file.h"
+
+namespace wardmap::slam::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+Eigen::Matrix4d read_matrix4(const fs::path& file) {
+  std::vector<double> v;
+  long last_line = 0;
+  for_each_data_line(file, false, [&](long line, const std::vector<std::string>& tok) {
+    last_line = line;
+    for (const auto& t : tok) v.push_back(parse_double(t, file, line, "matrix entry"));
+  });
+  if (v.size() != 16) throw InputError(file.string(), "expected a 4x4 matrix (16 numbers), got " + std::to_string(v.size()), last_line);
+  Eigen::Matrix4d T;
+  for (int i = 0; i < 16; ++i) T(i / 4, i % 4) = v[i];
+  return T;
+}
+
+class SevenScenesReader : public SequenceReader {
+ public:
+  SevenScenesReader(const fs::path& root, const ReaderOptions& o) {
+    info_.kind = DatasetKind::SevenScenes;
+    info_.root = root;
+    info_.fps = 30.0;
+    info_.depth_factor = o.depth_factor.value_or(1000.0);
+    char name[64];
+    for (int n = 0;; ++n) {
+      std::snprintf(name, sizeof name, "frame-%06d.", n);
+      const std::string stem = name;
+      fs::path color = root / (stem + "color.png");
+      if (!fs::exists(color)) color = root / (stem + "color.jpg");
+      if (!fs::exists(color)) break;
+      Entry e;
+      e.timestamp = n / info_.fps;
+      e.image = color;
+      if (const fs::path d = root / (stem + "depth.png"); fs::exists(d)) e.depth = d;
+      if (const fs::path p = root / (stem + "pose.txt"); fs::exists(p)) {
+        const Eigen::Matrix4d T = read_matrix4(p);
+        const double det = T.topLeftCorner<3, 3>().determinant();
+        if (std::abs(det - 1.0) > 1e-2) throw InputError(p.string(), "rotation block is not a rotation (determinant " + std::to_string(det) + ")");
+        e.gt_pose = SE3::from_matrix(T);
+        ground_truth_.push_back(e.timestamp, *e.gt_pose);
+      }
+      entries_.push_back(std::move(e));
+    }
+    finish_opening();
+    // Frames without depth in a sequence that has it elsewhere would silently change the mode.
+    for (const Entry& e : entries_)
+      if (e.depth.empty() != entries_.front().depth.empty())
+        throw InputError(e.image.string(), "depth image missing for this frame while other frames have one");
+    const fs::path intr = root / "camera-intrinsics.txt";
+    if (fs::exists(intr)) {
+      std::vector<double> k;
+      for_each_data_line(intr, false, [&](long line, const std::vector<std::string>& tok) {
+        for (const auto& t : tok) k.push_back(parse_double(t, intr, line, "intrinsic"));
+      });
+      if (k.size() != 9) throw InputError(intr.string(), "expected a 3x3 matrix (9 numbers), got " + std::to_string(k.size()));
+      PinholeCamera c;
+      c.fx = k[0], c.cx = k[2], c.fy = k[4], c.cy = k[5];
+      c.width = info_.width, c.height = info_.height;
+      if (auto err = c.validate()) throw InputError(intr.string(), *err);
+      info_.calibration = c;
+      info_.calibration_source = intr.string();
+    }
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<SequenceReader> open_seven_scenes(const fs::path& root, const ReaderOptions& o) {
+  return std::make_unique<SevenScenesReader>(root, o);
+}
+
+}  // namespace wardmap::slam::io

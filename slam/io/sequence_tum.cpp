@@ -1,0 +1,87 @@
+// TUM RGB-D: rgb.txt and depth.txt (`timestamp path`), groundtruth.txt, depth factor 5000.
+#include <algorithm>
+#include <limits>
+
+#include "slam/core/errors.h"
+#include "slam/io/sequence.h"
+#include "slam/io/text_file.h"
+#include "slam/io/trajectory_io.h"
+
+namespace wardmap::slam::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TimedPath {
+  double t;
+  fs::path path;
+};
+
+std::vector<TimedPath> read_index(const fs::path& root, const char* name) {
+  const fs::path file = root / name;
+  std::vector<TimedPath> out;
+  double previous = -std::numeric_limits<double>::infinity();
+  for_each_data_line(file, false, [&](long line, const std::vector<std::string>& tok) {
+    if (tok.size() != 2)
+      throw InputError(file.string(), "expected 'timestamp path', got " + std::to_string(tok.size()) + " fields", line);
+    const double t = parse_double(tok[0], file, line, "timestamp");
+    check_increasing(t, previous, file, line);
+    previous = t;
+    out.push_back({t, root / tok[1]});
+  });
+  if (out.empty()) throw InputError(file.string(), "no frames listed");
+  return out;
+}
+
+class TumReader : public SequenceReader {
+ public:
+  TumReader(const fs::path& root, const ReaderOptions& o) {
+    info_.kind = DatasetKind::TumRgbd;
+    info_.root = root;
+    info_.depth_factor = o.depth_factor.value_or(5000.0);
+    info_.fps = 30.0;
+    const auto rgb = read_index(root, "rgb.txt");
+    std::vector<TimedPath> depth;
+    if (fs::exists(root / "depth.txt")) depth = read_index(root, "depth.txt");
+    size_t dropped = 0;
+    for (const auto& r : rgb) {
+      Entry e;
+      e.timestamp = r.t;
+      e.image = r.path;
+      if (!depth.empty()) {
+        // Closest depth image in time, within max_dt (TUM's associate.py rule).
+        auto it = std::lower_bound(depth.begin(), depth.end(), r.t, [](const TimedPath& d, double t) { return d.t < t; });
+        const TimedPath* best = nullptr;
+        double best_dt = o.max_dt;
+        for (auto c : {it, it == depth.begin() ? it : it - 1}) {
+          if (c == depth.end()) continue;
+          if (std::abs(c->t - r.t) <= best_dt) {
+            best_dt = std::abs(c->t - r.t);
+            best = &*c;
+          }
+        }
+        if (!best) {
+          ++dropped;
+          continue;
+        }
+        e.depth = best->path;
+      }
+      entries_.push_back(std::move(e));
+    }
+    if (dropped) info_.notes = std::to_string(dropped) + " colour frames without depth within " + std::to_string(o.max_dt) + " s dropped";
+    if (fs::exists(root / "groundtruth.txt")) {
+      ground_truth_ = read_trajectory(root / "groundtruth.txt", PoseFormat::Tum);
+      attach_ground_truth_by_time(o.max_dt);
+    }
+    finish_opening();
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<SequenceReader> open_tum(const fs::path& root, const ReaderOptions& o) {
+  return std::make_unique<TumReader>(root, o);
+}
+
+}  // namespace wardmap::slam::io

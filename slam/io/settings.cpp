@@ -1,0 +1,145 @@
+#include "slam/io/settings.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "slam/core/errors.h"
+
+namespace wardmap::slam::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string strip_opencv_header(const std::string& text) {
+  // OpenCV's FileStorage writes `%YAML:1.0`, which yaml-cpp rejects as a directive; blank it out
+  // (keeping line numbers).
+  if (text.rfind("%YAML:", 0) == 0) {
+    const size_t eol = text.find('\n');
+    return eol == std::string::npos ? std::string() : text.substr(eol);
+  }
+  return text;
+}
+
+template <class T>
+bool read_key(const YAML::Node& root, const std::string& key, T& out, const fs::path& file, const char* expected) {
+  const YAML::Node n = root[key];
+  if (!n) return false;
+  try {
+    out = n.as<T>();
+  } catch (const YAML::Exception&) {
+    std::ostringstream v;
+    v << n;
+    throw InputError(file.string(), "key '" + key + "': expected " + expected + ", got '" + v.str() + "'", n.Mark().line + 1);
+  }
+  return true;
+}
+
+double required_number(const YAML::Node& root, std::initializer_list<const char*> keys, const fs::path& file) {
+  double v = 0;
+  for (const char* k : keys)
+    if (read_key(root, k, v, file, "a number")) return v;
+  throw InputError(file.string(), std::string("missing key '") + *keys.begin() + "' (camera calibration)");
+}
+
+}  // namespace
+
+Settings parse_settings(const std::string& text, const fs::path& file) {
+  Settings s;
+  s.file = file;
+  try {
+    s.root = YAML::Load(strip_opencv_header(text));
+  } catch (const YAML::ParserException& ex) {
+    throw InputError(file.string(), "YAML syntax error: " + ex.msg, ex.mark.line + 1);
+  }
+  if (!s.root.IsMap()) throw InputError(file.string(), "expected a YAML mapping of settings");
+  const YAML::Node& r = s.root;
+  CameraSettings& c = s.camera;
+  read_key(r, "Camera.type", c.type, file, "a string");
+  if (c.type != "PinHole")
+    throw InputError(file.string(), "key 'Camera.type': '" + c.type + "' is not supported (allowed: PinHole)");
+  c.camera.fx = required_number(r, {"Camera1.fx", "Camera.fx"}, file);
+  c.camera.fy = required_number(r, {"Camera1.fy", "Camera.fy"}, file);
+  c.camera.cx = required_number(r, {"Camera1.cx", "Camera.cx"}, file);
+  c.camera.cy = required_number(r, {"Camera1.cy", "Camera.cy"}, file);
+  for (auto [k3, k2, dst] : {std::tuple{"Camera1.k1", "Camera.k1", &c.camera.k1}, {"Camera1.k2", "Camera.k2", &c.camera.k2},
+                             {"Camera1.p1", "Camera.p1", &c.camera.p1}, {"Camera1.p2", "Camera.p2", &c.camera.p2},
+                             {"Camera1.k3", "Camera.k3", &c.camera.k3}})
+    if (!read_key(r, k3, *dst, file, "a number")) read_key(r, k2, *dst, file, "a number");
+  if (!read_key(r, "Camera.width", c.camera.width, file, "an integer"))
+    throw InputError(file.string(), "missing key 'Camera.width'");
+  if (!read_key(r, "Camera.height", c.camera.height, file, "an integer"))
+    throw InputError(file.string(), "missing key 'Camera.height'");
+  if (auto err = c.camera.validate()) throw InputError(file.string(), "camera calibration: " + *err);
+  read_key(r, "Camera.fps", c.fps, file, "a number");
+  if (!(c.fps > 0 && c.fps <= 1000)) throw InputError(file.string(), "key 'Camera.fps': must be in (0, 1000], got " + std::to_string(c.fps));
+  int rgb = 1;
+  if (read_key(r, "Camera.RGB", rgb, file, "0 or 1") && rgb != 0 && rgb != 1)
+    throw InputError(file.string(), "key 'Camera.RGB': must be 0 or 1, got " + std::to_string(rgb));
+  c.rgb = rgb == 1;
+  double factor = 0;
+  if (read_key(r, "RGBD.DepthMapFactor", factor, file, "a number") || read_key(r, "DepthMapFactor", factor, file, "a number")) {
+    if (!(factor > 0)) throw InputError(file.string(), "key 'RGBD.DepthMapFactor': must be positive, got " + std::to_string(factor));
+    c.depth_map_factor = factor;
+  }
+  return s;
+}
+
+Settings load_settings(const fs::path& file) {
+  if (!fs::exists(file)) throw InputError(file.string(), "settings file not found");
+  std::ifstream in(file);
+  if (!in) throw InputError(file.string(), "cannot open the settings file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_settings(ss.str(), file);
+}
+
+namespace {
+std::string full(const std::string& s, const std::string& k) { return s.empty() ? k : s + "." + k; }
+}  // namespace
+
+#define WARDMAP_READ_OPTION(T, expected)                                                                         \
+  void read_option(const YAML::Node& section, const std::string& section_name, const std::string& key, T& value, \
+                   const fs::path& file) {                                                                       \
+    if (!section || !section.IsMap() || !section[key]) return;                                                  \
+    try {                                                                                                        \
+      value = section[key].as<T>();                                                                              \
+    } catch (const YAML::Exception&) {                                                                           \
+      std::ostringstream v;                                                                                      \
+      v << section[key];                                                                                         \
+      throw InputError(file.string(), "key '" + full(section_name, key) + "': expected " expected ", got '" +   \
+                                          v.str() + "'", section[key].Mark().line + 1);                          \
+    }                                                                                                            \
+  }
+WARDMAP_READ_OPTION(double, "a number")
+WARDMAP_READ_OPTION(int, "an integer")
+WARDMAP_READ_OPTION(bool, "true or false")
+WARDMAP_READ_OPTION(std::string, "a string")
+#undef WARDMAP_READ_OPTION
+
+void check_range(double value, double lo, double hi, const std::string& full_key, const fs::path& file) {
+  if (!(value >= lo && value <= hi)) {
+    std::ostringstream s;
+    s << "key '" << full_key << "': must be in [" << lo << ", " << hi << "], got " << value;
+    throw InputError(file.string(), s.str());
+  }
+}
+
+std::string suggest_settings_name(const std::string& kind, const fs::path& root, int width) {
+  const std::string name = root.filename().string() + " " + root.parent_path().filename().string();
+  if (kind == "KITTI odometry") {
+    if (width == 1241) return "KITTI00-02.yaml";
+    if (width == 1242) return "KITTI03.yaml";
+    if (width == 1226) return "KITTI04-12.yaml";
+  }
+  if (kind == "7-Scenes") return "7Scenes.yaml";
+  if (kind == "EuRoC") return "EuRoC.yaml";
+  if (kind == "TUM RGB-D") {
+    if (name.find("freiburg1") != std::string::npos || name.find("fr1") != std::string::npos) return "TUM1.yaml";
+    if (name.find("freiburg2") != std::string::npos || name.find("fr2") != std::string::npos) return "TUM2.yaml";
+    if (name.find("freiburg3") != std::string::npos || name.find("fr3") != std::string::npos) return "TUM3.yaml";
+  }
+  return {};
+}
+
+}  // namespace wardmap::slam::io

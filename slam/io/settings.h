@@ -1,0 +1,55 @@
+// Camera settings in ORB-SLAM3's YAML keys (existing settings files work unchanged), plus wardmap's
+// own sections beside them, each read into its module's options struct with validated values.
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "slam/core/camera.h"
+
+namespace wardmap::slam::io {
+
+struct CameraSettings {
+  std::string type = "PinHole";  // Camera.type; only PinHole is supported
+  PinholeCamera camera;          // Camera1.fx ... (or ORB-SLAM2's Camera.fx ...), Camera.width/height
+  double fps = 30.0;             // Camera.fps
+  bool rgb = true;               // Camera.RGB: 1 = RGB order, 0 = BGR
+  std::optional<double> depth_map_factor;  // RGBD.DepthMapFactor (or DepthMapFactor)
+};
+
+struct Settings {
+  std::filesystem::path file;
+  CameraSettings camera;
+  YAML::Node root;  // the whole document, for the modules' own sections
+  // A wardmap section (e.g. "tracking"); an undefined node when absent.
+  YAML::Node section(const std::string& name) const { return root[name]; }
+};
+
+// Loads and validates; accepts OpenCV's `%YAML:1.0` header. Throws InputError naming the file and
+// the key (and the line for YAML syntax errors).
+Settings load_settings(const std::filesystem::path& file);
+
+// Parses YAML text (for tests and for settings embedded in other files); `file` names it in errors.
+Settings parse_settings(const std::string& text, const std::filesystem::path& file);
+
+// Reads section[key] into value when present, as the type of value; throws InputError
+// "key 'section.key': expected a number, got 'abc'". Leaves value unchanged when absent.
+void read_option(const YAML::Node& section, const std::string& section_name, const std::string& key, double& value,
+                 const std::filesystem::path& file);
+void read_option(const YAML::Node& section, const std::string& section_name, const std::string& key, int& value,
+                 const std::filesystem::path& file);
+void read_option(const YAML::Node& section, const std::string& section_name, const std::string& key, bool& value,
+                 const std::filesystem::path& file);
+void read_option(const YAML::Node& section, const std::string& section_name, const std::string& key, std::string& value,
+                 const std::filesystem::path& file);
+// Throws InputError "key 'section.key': must be in [lo, hi], got v".
+void check_range(double value, double lo, double hi, const std::string& full_key, const std::filesystem::path& file);
+
+// The shipped settings file (data/settings/...) that fits a dataset, when one is known: KITTI by
+// image width, 7-Scenes, EuRoC, TUM fr1/2/3 by folder name. Empty when none fits.
+std::string suggest_settings_name(const std::string& dataset_kind, const std::filesystem::path& root, int width);
+
+}  // namespace wardmap::slam::io

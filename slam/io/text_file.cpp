@@ -1,0 +1,96 @@
+#include "slam/io/text_file.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "slam/core/errors.h"
+
+namespace wardmap::slam::io {
+
+namespace fs = std::filesystem;
+
+void for_each_data_line(const fs::path& file, bool csv,
+                        const std::function<void(long, const std::vector<std::string>&)>& fn) {
+  if (!fs::exists(file)) throw InputError(file.string(), "file not found");
+  std::ifstream in(file);
+  if (!in) throw InputError(file.string(), std::string("cannot open: ") + std::strerror(errno));
+  std::string line;
+  long number = 0;
+  std::vector<std::string> tokens;
+  while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    size_t first = line.find_first_not_of(" \t");
+    if (first == std::string::npos || line[first] == '#') continue;
+    tokens.clear();
+    std::string tok;
+    for (char c : line.substr(first)) {
+      if (c == ' ' || c == '\t' || (csv && c == ',')) {
+        if (!tok.empty()) tokens.push_back(tok);
+        tok.clear();
+      } else {
+        tok.push_back(c);
+      }
+    }
+    if (!tok.empty()) tokens.push_back(tok);
+    fn(number, tokens);
+  }
+  if (in.bad()) throw InputError(file.string(), "read error", number);
+}
+
+double parse_double(const std::string& token, const fs::path& file, long line, const char* what) {
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(token.c_str(), &end);
+  if (token.empty() || end != token.c_str() + token.size() || errno == ERANGE || !std::isfinite(v))
+    throw InputError(file.string(), std::string(what) + ": '" + token + "' is not a number", line);
+  return v;
+}
+
+long long parse_int(const std::string& token, const fs::path& file, long line, const char* what) {
+  char* end = nullptr;
+  errno = 0;
+  const long long v = std::strtoll(token.c_str(), &end, 10);
+  if (token.empty() || end != token.c_str() + token.size() || errno == ERANGE)
+    throw InputError(file.string(), std::string(what) + ": '" + token + "' is not an integer", line);
+  return v;
+}
+
+void write_file_atomic(const fs::path& file, const std::string& contents) {
+  if (file.has_parent_path()) fs::create_directories(file.parent_path());
+  const fs::path tmp = file.string() + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw InputError(file.string(), std::string("cannot write: ") + std::strerror(errno));
+    out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
+    out.flush();
+    if (!out) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw InputError(file.string(), "write failed (disk full?)");
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, file, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw InputError(file.string(), "cannot rename the temporary file into place: " + ec.message());
+  }
+}
+
+void check_increasing(double t, double previous, const fs::path& file, long line) {
+  if (t <= previous) {
+    std::ostringstream s;
+    s.precision(17);
+    s << "timestamp " << t << " is not after the previous one " << previous << " (timestamps must increase)";
+    throw InputError(file.string(), s.str(), line);
+  }
+}
+
+}  // namespace wardmap::slam::io
