@@ -73,6 +73,12 @@ Frame SequenceReader::read(size_t i) {
 
 void SequenceReader::finish_opening() {
   if (entries_.empty()) throw InputError(info_.root.string(), "the sequence has no frames");
+  for (const Entry& e : entries_)
+    for (const fs::path* p : {&e.image, &e.depth}) {
+      if (p->empty() || fs::exists(*p)) continue;
+      if (!e.listed_in.empty()) throw InputError(e.listed_in.string(), "listed file '" + p->string() + "' not found", e.line);
+      throw InputError(p->string(), "file not found");
+    }
   const cv::Mat first = load_image(entries_.front().image);
   info_.width = first.cols;
   info_.height = first.rows;

@@ -72,8 +72,11 @@ class SequenceReader {
     double timestamp = 0;
     std::filesystem::path image, depth;
     std::optional<SE3> gt_pose;
+    std::filesystem::path listed_in;  // index file naming this frame (rgb.txt, data.csv), if any
+    long line = 0;                    // its line there
   };
-  // Fills info_.width/height from the first image, duration, counts; call at the end of opening.
+  // Checks that every listed image and depth file exists (naming the index file and line when one
+  // lists it), fills info_.width/height from the first image, duration, counts. Call last.
   void finish_opening();
   // Attaches to each entry the ground-truth pose closest in time within max_dt.
   void attach_ground_truth_by_time(double max_dt);

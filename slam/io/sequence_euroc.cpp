@@ -45,6 +45,8 @@ class EurocReader : public SequenceReader {
       Entry e;
       e.timestamp = t;
       e.image = cam / "data" / tok[1];
+      e.listed_in = csv;
+      e.line = line;
       entries_.push_back(std::move(e));
     });
 

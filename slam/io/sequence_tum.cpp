@@ -16,6 +16,7 @@ namespace {
 struct TimedPath {
   double t;
   fs::path path;
+  long line;
 };
 
 std::vector<TimedPath> read_index(const fs::path& root, const char* name) {
@@ -28,7 +29,7 @@ std::vector<TimedPath> read_index(const fs::path& root, const char* name) {
     const double t = parse_double(tok[0], file, line, "timestamp");
     check_increasing(t, previous, file, line);
     previous = t;
-    out.push_back({t, root / tok[1]});
+    out.push_back({t, root / tok[1], line});
   });
   if (out.empty()) throw InputError(file.string(), "no frames listed");
   return out;
@@ -49,6 +50,8 @@ class TumReader : public SequenceReader {
       Entry e;
       e.timestamp = r.t;
       e.image = r.path;
+      e.listed_in = root / "rgb.txt";
+      e.line = r.line;
       if (!depth.empty()) {
         // Closest depth image in time, within max_dt (TUM's associate.py rule).
         auto it = std::lower_bound(depth.begin(), depth.end(), r.t, [](const TimedPath& d, double t) { return d.t < t; });

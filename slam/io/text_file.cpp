@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -84,11 +85,21 @@ void write_file_atomic(const fs::path& file, const std::string& contents) {
   }
 }
 
+// The shortest decimal form that reads back as the same double (what the file most likely said).
+static std::string shortest(double v) {
+  char buf[40];
+  for (int precision = 6; precision <= 17; ++precision) {
+    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
+}
+
 void check_increasing(double t, double previous, const fs::path& file, long line) {
   if (t <= previous) {
     std::ostringstream s;
-    s.precision(17);
-    s << "timestamp " << t << " is not after the previous one " << previous << " (timestamps must increase)";
+    s << "timestamp " << shortest(t) << " is not after the previous one " << shortest(previous)
+      << " (timestamps must increase)";
     throw InputError(file.string(), s.str(), line);
   }
 }

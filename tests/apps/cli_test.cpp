@@ -1,0 +1,121 @@
+// wardmap info, --help, and bad input at the command line: exit code 2 and one line naming the
+// file, the line where there is one, and the problem; no partial output file.
+#include <gtest/gtest.h>
+
+#include "tests/apps/cli_support.h"
+#include "tests/slam/io/fixtures.h"
+
+namespace wardmap::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The error is the last (and only) line on stderr, prefixed 'wardmap: error: '.
+void expect_one_line_error(const CliResult& r, const std::string& must_contain) {
+  EXPECT_EQ(r.code, 2) << r.output;
+  const auto pos = r.output.find("wardmap: error: ");
+  ASSERT_NE(pos, std::string::npos) << r.output;
+  const std::string line = r.output.substr(pos);
+  EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1) << r.output;
+  EXPECT_NE(line.find(must_contain), std::string::npos) << r.output;
+}
+
+TEST(Cli, HelpOnEveryCommand) {
+  for (const char* cmd : {"", "info ", "eval "}) {
+    const CliResult r = wardmap_cli(std::string(cmd) + "--help");
+    EXPECT_EQ(r.code, 0) << cmd;
+    EXPECT_NE(r.output.find("Usage"), std::string::npos) << r.output;
+  }
+  EXPECT_EQ(wardmap_cli("").code, 2);  // no command: usage error
+}
+
+TEST(Cli, InfoOnSharedKitti) {
+  WARDMAP_REQUIRE_DATA("kitti-odometry-03");
+  const CliResult r = wardmap_cli("info " + shq(shared_data_dir() / "kitti-odometry-03"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("KITTI odometry"), std::string::npos);
+  EXPECT_NE(r.output.find("frames:        400"), std::string::npos);
+  EXPECT_NE(r.output.find("1242x375"), std::string::npos);
+  EXPECT_NE(r.output.find("10.00 Hz"), std::string::npos);
+  EXPECT_NE(r.output.find("ground truth:  yes"), std::string::npos);
+  EXPECT_NE(r.output.find("KITTI03.yaml"), std::string::npos);
+}
+
+TEST(Cli, InfoOnShared7Scenes) {
+  WARDMAP_REQUIRE_DATA("7scenes-redkitchen");
+  const CliResult r = wardmap_cli("info " + shq(shared_data_dir() / "7scenes-redkitchen"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("7-Scenes"), std::string::npos);
+  EXPECT_NE(r.output.find("frames:        600"), std::string::npos);
+  EXPECT_NE(r.output.find("depth:         yes"), std::string::npos);
+  EXPECT_NE(r.output.find("ground truth:  yes (600 of 600"), std::string::npos);
+}
+
+TEST(CliBadInput, MissingImage) {
+  const fs::path root = scratch_dir();
+  make_tum(root);
+  fs::remove(root / "rgb" / "1.png");
+  expect_one_line_error(wardmap_cli("info " + shq(root)), "rgb.txt:5: listed file");
+}
+
+TEST(CliBadInput, UnreadableImage) {
+  const fs::path root = scratch_dir();
+  make_tum(root);
+  write_text(root / "rgb" / "0.png", "garbage");
+  expect_one_line_error(wardmap_cli("info " + shq(root)), "0.png: cannot decode the image");
+}
+
+TEST(CliBadInput, MalformedLine) {
+  const fs::path root = scratch_dir();
+  make_tum(root);
+  write_text(root / "groundtruth.txt", "1.0 0 0 0 0 0 0 1\n1.1 0 0 zero 0 0 0 1\n");
+  expect_one_line_error(wardmap_cli("info " + shq(root)), "groundtruth.txt:2: pose value: 'zero' is not a number");
+}
+
+TEST(CliBadInput, NonMonotonicTimestamp) {
+  const fs::path root = scratch_dir();
+  make_kitti(root);
+  write_text(root / "sequences" / "05" / "times.txt", "0.0\n0.2\n0.1\n");
+  expect_one_line_error(wardmap_cli("info " + shq(root)), "times.txt:3: timestamp 0.1 is not after the previous one 0.2");
+}
+
+TEST(CliBadInput, MissingCalibration) {
+  const fs::path root = scratch_dir();
+  make_kitti(root);
+  write_text(root / "sequences" / "05" / "calib.txt", "P1: 1 0 0 0 0 1 0 0 0 0 1 0\n");
+  expect_one_line_error(wardmap_cli("info " + shq(root)), "calib.txt: no 'P0:' line");
+  const fs::path settings = root / "settings.yaml";
+  write_text(settings, "%YAML:1.0\nCamera.type: \"PinHole\"\nCamera1.fy: 500\n");
+  make_kitti(root);
+  expect_one_line_error(wardmap_cli("info " + shq(root) + " --settings " + shq(settings)),
+                        "settings.yaml: missing key 'Camera1.fx'");
+}
+
+TEST(CliBadInput, WrongCalibrationSize) {
+  const fs::path root = scratch_dir();
+  make_seven_scenes(root);
+  expect_one_line_error(
+      wardmap_cli("info " + shq(root) + " --settings " + shq(source_dir() / "data" / "settings" / "KITTI03.yaml")),
+      "do not match the sequence's images 64x48");
+}
+
+TEST(CliBadInput, UnknownLayout) {
+  const fs::path root = scratch_dir();
+  write_text(root / "notes.txt", "nothing here");
+  expect_one_line_error(wardmap_cli("info " + shq(root)), "unknown layout");
+  expect_one_line_error(wardmap_cli("info " + shq(root / "absent")), "no such file or folder");
+}
+
+TEST(CliBadInput, NoPartialOutputOnError) {
+  const fs::path dir = scratch_dir();
+  write_text(dir / "gt.txt", "1 0 0 0 0 0 0 1\n2 1 0 0 0 0 0 1\n3 2 0 0 0 0 0 1\n4 2 1 0 0 0 0 1\n");
+  write_text(dir / "est.txt", "1 0 0 0 0 0 0 1\n2 1 0 0 0 0 0 1\nthree 2 0 0 0 0 0 1\n");
+  const CliResult r = wardmap_cli("eval --gt " + shq(dir / "gt.txt") + " --est " + shq(dir / "est.txt") +
+                                  " --json " + shq(dir / "out.json") + " --plot " + shq(dir / "out.png"));
+  expect_one_line_error(r, "est.txt:3: pose value: 'three' is not a number");
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().extension(), ".txt") << "left behind: " << e.path();
+}
+
+}  // namespace
+}  // namespace wardmap::test

@@ -1,0 +1,166 @@
+// wardmap eval against figures computed independently here: ground truth against itself moved by a
+// known Sim(3) plus noise. The test aligns with Horn's quaternion method (not the SVD of Umeyama
+// that wardmap uses) and compares ATE and scale to 1e-6.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "slam/core/sim3.h"
+#include "slam/io/trajectory_io.h"
+#include "tests/apps/cli_support.h"
+
+namespace wardmap::test {
+namespace {
+
+namespace fs = std::filesystem;
+using slam::SE3;
+using slam::Sim3;
+using slam::Trajectory;
+
+struct Reference {
+  double rmse, scale;
+};
+
+// Horn (1987) closed-form absolute orientation with the asymmetric scale of least squares.
+Reference horn_ate(const std::vector<Eigen::Vector3d>& est, const std::vector<Eigen::Vector3d>& gt, bool with_scale) {
+  const size_t n = est.size();
+  Eigen::Vector3d ma = Eigen::Vector3d::Zero(), mb = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < n; ++i) ma += est[i], mb += gt[i];
+  ma /= n, mb /= n;
+  Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+  double saa = 0;
+  for (size_t i = 0; i < n; ++i) {
+    M += (est[i] - ma) * (gt[i] - mb).transpose();
+    saa += (est[i] - ma).squaredNorm();
+  }
+  const double Sxx = M(0, 0), Sxy = M(0, 1), Sxz = M(0, 2), Syx = M(1, 0), Syy = M(1, 1), Syz = M(1, 2), Szx = M(2, 0),
+               Szy = M(2, 1), Szz = M(2, 2);
+  Eigen::Matrix4d N;
+  N << Sxx + Syy + Szz, Syz - Szy, Szx - Sxz, Sxy - Syx,  //
+      Syz - Szy, Sxx - Syy - Szz, Sxy + Syx, Szx + Sxz,   //
+      Szx - Sxz, Sxy + Syx, -Sxx + Syy - Szz, Syz + Szy,  //
+      Sxy - Syx, Szx + Sxz, Syz + Szy, -Sxx - Syy + Szz;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(N);
+  const Eigen::Vector4d q = eig.eigenvectors().col(3);  // largest eigenvalue
+  const Eigen::Matrix3d R = Eigen::Quaterniond(q(0), q(1), q(2), q(3)).normalized().toRotationMatrix();
+  double num = 0;
+  for (size_t i = 0; i < n; ++i) num += (gt[i] - mb).dot(R * (est[i] - ma));
+  const double s = with_scale ? num / saa : 1.0;
+  const Eigen::Vector3d t = mb - s * R * ma;
+  double sq = 0;
+  for (size_t i = 0; i < n; ++i) sq += (s * R * est[i] + t - gt[i]).squaredNorm();
+  return {std::sqrt(sq / n), s};
+}
+
+// A wandering 3-D path (a corridor walk with turns and height changes), 200 poses at 30 Hz.
+Trajectory ground_truth() {
+  Trajectory t;
+  for (int i = 0; i < 200; ++i) {
+    const double a = i * 0.03;
+    t.push_back(10.0 + i / 30.0, SE3(Eigen::Quaterniond(Eigen::AngleAxisd(0.5 * std::sin(a), Eigen::Vector3d::UnitY())),
+                                     Eigen::Vector3d(4 * std::sin(a), 0.3 * std::cos(2 * a), 2 * a)));
+  }
+  return t;
+}
+
+struct Case {
+  std::vector<Eigen::Vector3d> est_points, gt_points;
+};
+
+Case make_estimate(const Trajectory& gt, const Sim3& S, double noise, Trajectory& est) {
+  std::mt19937 rng(42);
+  std::normal_distribution<double> n(0.0, noise);
+  Case c;
+  est = gt;
+  for (size_t i = 0; i < gt.size(); ++i) {
+    const SE3 moved = S.transform_pose(gt.poses[i]);
+    est.poses[i] = SE3(moved.rotation(), moved.translation() + Eigen::Vector3d(n(rng), n(rng), n(rng)));
+    c.est_points.push_back(est.poses[i].translation());
+    c.gt_points.push_back(gt.poses[i].translation());
+  }
+  return c;
+}
+
+nlohmann::json run_eval(const fs::path& gt, const fs::path& est, const std::string& align) {
+  const fs::path out = est.parent_path() / ("eval-" + align + ".json");
+  const CliResult r = wardmap_cli("eval --gt " + shq(gt) + " --est " + shq(est) + " --align " + align + " --json " +
+                                  shq(out) + " --plot " + shq(out.string() + ".png"));
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out.string() + ".png"));
+  std::ifstream in(out);
+  return nlohmann::json::parse(in);
+}
+
+const Sim3 kTruth(0.42, Eigen::Quaterniond(Eigen::AngleAxisd(2.2, Eigen::Vector3d(0.3, -1, 0.5).normalized())),
+                  Eigen::Vector3d(5, -3, 12));
+
+TEST(EvalCli, TumSim3MatchesIndependentComputation) {
+  const fs::path dir = scratch_dir();
+  const Trajectory gt = ground_truth();
+  Trajectory est;
+  const Case c = make_estimate(gt, kTruth, 0.01, est);
+  slam::io::write_tum(dir / "gt.txt", gt);
+  slam::io::write_tum(dir / "est.txt", est);
+  // The file stores 9 decimals: the reference reads the same rounded values back.
+  const Trajectory est_read = slam::io::read_trajectory(dir / "est.txt");
+  std::vector<Eigen::Vector3d> pts;
+  for (const auto& p : est_read.poses) pts.push_back(p.translation());
+  const Reference ref = horn_ate(pts, c.gt_points, true);
+  const nlohmann::json j = run_eval(dir / "gt.txt", dir / "est.txt", "sim3");
+  EXPECT_EQ(j["pairs"].get<int>(), 200);
+  EXPECT_NEAR(j["ate"]["rmse"].get<double>(), ref.rmse, 1e-6);
+  EXPECT_NEAR(j["scale"].get<double>(), ref.scale, 1e-6);
+  EXPECT_NEAR(ref.scale, 1 / 0.42, 0.01);  // sanity: the noise is small
+  EXPECT_GT(ref.rmse, 0.005);
+  EXPECT_NEAR(j["tracking_rate"].get<double>(), 100.0, 1e-9);
+}
+
+TEST(EvalCli, KittiFormatSim3AndSe3) {
+  const fs::path dir = scratch_dir();
+  const Trajectory gt = ground_truth();
+  for (const bool with_scale : {true, false}) {
+    Trajectory est;
+    const Case c = make_estimate(gt, with_scale ? kTruth : Sim3(1.0, kTruth.rotation(), kTruth.translation()), 0.02, est);
+    slam::io::write_kitti(dir / "gt.txt", gt);
+    slam::io::write_kitti(dir / "est.txt", est);
+    std::vector<Eigen::Vector3d> pe, pg;
+    for (const auto& p : slam::io::read_trajectory(dir / "est.txt").poses) pe.push_back(p.translation());
+    for (const auto& p : slam::io::read_trajectory(dir / "gt.txt").poses) pg.push_back(p.translation());
+    const Reference ref = horn_ate(pe, pg, with_scale);
+    const nlohmann::json j = run_eval(dir / "gt.txt", dir / "est.txt", with_scale ? "sim3" : "se3");
+    EXPECT_EQ(j["pairs"].get<int>(), 200);
+    EXPECT_NEAR(j["ate"]["rmse"].get<double>(), ref.rmse, 1e-6) << (with_scale ? "sim3" : "se3");
+    EXPECT_NEAR(j["scale"].get<double>(), ref.scale, 1e-6);
+  }
+}
+
+TEST(EvalCli, TumSe3) {
+  const fs::path dir = scratch_dir();
+  const Trajectory gt = ground_truth();
+  Trajectory est;
+  make_estimate(gt, Sim3(1.0, kTruth.rotation(), kTruth.translation()), 0.03, est);
+  slam::io::write_tum(dir / "gt.txt", gt);
+  slam::io::write_tum(dir / "est.txt", est);
+  std::vector<Eigen::Vector3d> pe, pg;
+  for (const auto& p : slam::io::read_trajectory(dir / "est.txt").poses) pe.push_back(p.translation());
+  for (const auto& p : slam::io::read_trajectory(dir / "gt.txt").poses) pg.push_back(p.translation());
+  const Reference ref = horn_ate(pe, pg, false);
+  const nlohmann::json j = run_eval(dir / "gt.txt", dir / "est.txt", "se3");
+  EXPECT_NEAR(j["ate"]["rmse"].get<double>(), ref.rmse, 1e-6);
+  EXPECT_DOUBLE_EQ(j["scale"].get<double>(), 1.0);
+}
+
+TEST(EvalCli, SharedKittiGroundTruthAgainstItselfIsZero) {
+  WARDMAP_REQUIRE_DATA("kitti-odometry-03");
+  const fs::path data = shared_data_dir() / "kitti-odometry-03";
+  const nlohmann::json j = run_eval(data, data / "poses" / "03.txt", "sim3");
+  EXPECT_EQ(j["pairs"].get<int>(), 400);
+  EXPECT_LT(j["ate"]["rmse"].get<double>(), 1e-6);
+  EXPECT_NEAR(j["tracking_rate"].get<double>(), 100.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace wardmap::test

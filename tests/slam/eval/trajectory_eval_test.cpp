@@ -1,0 +1,98 @@
+#include "slam/eval/trajectory_eval.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include <opencv2/core.hpp>
+
+#include "slam/eval/trajectory_plot.h"
+#include "tests/support/test_support.h"
+
+namespace wardmap::slam::eval {
+namespace {
+
+Trajectory circle(int n, double rate, double t0 = 0) {
+  Trajectory t;
+  for (int i = 0; i < n; ++i) {
+    const double a = 0.05 * i;
+    t.push_back(t0 + i / rate, SE3(Eigen::Quaterniond(Eigen::AngleAxisd(a, Eigen::Vector3d::UnitY())),
+                                   Eigen::Vector3d(3 * std::cos(a), 0.2 * std::sin(3 * a), 3 * std::sin(a))));
+  }
+  return t;
+}
+
+TEST(Associate, ClosestWithinWindowEachUsedOnce) {
+  Trajectory gt = circle(100, 100.0);  // 100 Hz ground truth
+  Trajectory est;
+  for (int i = 0; i < 30; ++i) est.push_back(i / 30.0 + 0.003, gt.poses[0]);
+  const auto pairs = associate(gt, est, {});
+  ASSERT_EQ(pairs.size(), 30u);
+  for (const auto& [g, e] : pairs) EXPECT_LE(std::abs(gt.timestamps[g] - est.timestamps[e]), 0.02);
+  Trajectory far = est;
+  for (auto& t : far.timestamps) t += 5;  // beyond the ground truth
+  EXPECT_TRUE(associate(gt, far, {}).empty());
+}
+
+TEST(Ate, ZeroForTransformedCopyUnderSim3ButNotUnderSe3) {
+  const Trajectory gt = circle(60, 30);
+  const Sim3 S(0.37, Eigen::Quaterniond(Eigen::AngleAxisd(1.1, Eigen::Vector3d(1, 0, 1).normalized())), Eigen::Vector3d(4, -2, 1));
+  Trajectory est = gt;
+  for (auto& p : est.poses) p = S.transform_pose(p);
+  const auto pairs = associate(gt, est, {});
+  const AteResult sim = compute_ate(gt, est, pairs, Alignment::Sim3);
+  EXPECT_LT(sim.stats.rmse, 1e-9);
+  EXPECT_NEAR(sim.scale, 1 / 0.37, 1e-9);
+  EXPECT_GT(compute_ate(gt, est, pairs, Alignment::SE3).stats.rmse, 0.5);
+  const AteResult none = compute_ate(gt, gt, pairs, Alignment::None);
+  EXPECT_EQ(none.stats.rmse, 0.0);
+}
+
+TEST(Ate, StatisticsOfKnownErrors) {
+  const ErrorStats s = error_stats({3, 1, 2, 4});
+  EXPECT_DOUBLE_EQ(s.mean, 2.5);
+  EXPECT_DOUBLE_EQ(s.median, 2.5);
+  EXPECT_DOUBLE_EQ(s.max, 4);
+  EXPECT_DOUBLE_EQ(s.rmse, std::sqrt(30.0 / 4));
+}
+
+TEST(Rpe, ZeroForRigidCopyAndScaleAware) {
+  const Trajectory gt = circle(50, 30);
+  Trajectory est = gt;
+  const Sim3 S(2.0, Eigen::Quaterniond(Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ())), Eigen::Vector3d(1, 1, 1));
+  for (auto& p : est.poses) p = S.transform_pose(p);
+  const auto pairs = associate(gt, est, {});
+  const RpeResult r = compute_rpe(gt, est, pairs, 5, 0.5);
+  EXPECT_EQ(r.count, 45u);
+  EXPECT_LT(r.translation.rmse, 1e-9);
+  EXPECT_LT(r.rotation_deg.rmse, 1e-6);
+}
+
+TEST(TrackingRate, DurationCoveredByEstimates) {
+  const Trajectory gt = circle(100, 100.0);  // 1 s at 100 Hz
+  Trajectory est;
+  for (int i = 0; i < 15; ++i) est.push_back(i / 30.0, gt.poses[0]);  // the first half second at 30 Hz
+  const double r = tracking_rate(gt, est, {});
+  EXPECT_NEAR(r, 50.0, 2.0);
+  Trajectory full;
+  for (int i = 0; i < 30; ++i) full.push_back(i / 30.0, gt.poses[0]);
+  EXPECT_NEAR(tracking_rate(gt, full, {}), 100.0, 1.5);  // the ground truth runs 23 ms past the last frame
+}
+
+TEST(Plot, DrawsAReadableImage) {
+  const Trajectory gt = circle(80, 30);
+  PlotSeries g{"ground truth", {}, cv::Scalar(0, 0, 0)}, e{"estimate", {}, cv::Scalar(0, 0, 255)};
+  for (const auto& p : gt.poses) g.points.push_back(p.translation()), e.points.push_back(p.translation() + Eigen::Vector3d(0.1, 0, 0));
+  const cv::Mat img = plot_top_view({g, e}, "ATE RMSE 0.100 m");
+  EXPECT_EQ(img.cols, 1000);
+  // Both colours are present (the curves were drawn).
+  cv::Mat red;
+  cv::inRange(img, cv::Scalar(0, 0, 200), cv::Scalar(60, 60, 255), red);
+  EXPECT_GT(cv::countNonZero(red), 500);
+  const auto file = test::scratch_dir() / "plot.png";
+  save_png(file, img);
+  EXPECT_TRUE(std::filesystem::exists(file));
+}
+
+}  // namespace
+}  // namespace wardmap::slam::eval

@@ -1,0 +1,194 @@
+#include <gtest/gtest.h>
+
+#include <opencv2/videoio.hpp>
+
+#include "slam/core/errors.h"
+#include "slam/io/sequence.h"
+#include "tests/slam/io/fixtures.h"
+#include "tests/support/test_support.h"
+
+namespace wardmap::slam::io {
+namespace {
+
+namespace fs = std::filesystem;
+using test::scratch_dir;
+using test::write_text;
+
+TEST(TumReader, AssociatesDepthWithinWindowAndAttachesGroundTruth) {
+  const fs::path root = scratch_dir();
+  test::make_tum(root);
+  auto r = open_sequence(root);
+  EXPECT_EQ(r->info().kind, DatasetKind::TumRgbd);
+  ASSERT_EQ(r->size(), 3u);  // the frame without depth within 0.02 s is dropped
+  EXPECT_NE(r->info().notes.find("1 colour frames without depth"), std::string::npos);
+  const Frame f = r->read(2);
+  EXPECT_DOUBLE_EQ(f.timestamp, 1.1);
+  EXPECT_EQ(f.image.at<cv::Vec3b>(0, 0)[0], 13);
+  EXPECT_FLOAT_EQ(f.depth.at<float>(5, 5), 4.0f);  // 20000 / 5000
+  ASSERT_TRUE(f.gt_pose.has_value());
+  EXPECT_DOUBLE_EQ(f.gt_pose->translation().x(), 3.0);
+  EXPECT_EQ(r->info().width, 64);
+  EXPECT_TRUE(r->info().has_depth);
+  EXPECT_EQ(r->ground_truth().size(), 4u);
+}
+
+TEST(KittiReader, ReadsTimesCalibrationAndPoses) {
+  const fs::path root = scratch_dir();
+  test::make_kitti(root);
+  auto r = open_sequence(root);
+  EXPECT_EQ(r->info().kind, DatasetKind::Kitti);
+  ASSERT_EQ(r->size(), 3u);
+  EXPECT_DOUBLE_EQ(r->timestamp(1), 0.1036);
+  ASSERT_TRUE(r->info().calibration.has_value());
+  EXPECT_DOUBLE_EQ(r->info().calibration->fx, 50.0);
+  EXPECT_DOUBLE_EQ(r->info().calibration->cy, 23.5);
+  const Frame f = r->read(2);
+  EXPECT_EQ(f.image.channels(), 1);
+  EXPECT_EQ(f.image.at<uchar>(0, 0), 22);
+  ASSERT_TRUE(f.gt_pose);
+  EXPECT_DOUBLE_EQ(f.gt_pose->translation().z(), 3.0);
+  // The sequence folder itself opens the same way.
+  EXPECT_EQ(open_sequence(root / "sequences" / "05")->size(), 3u);
+}
+
+TEST(KittiReader, WithoutTimesUsesTenHertz) {
+  const fs::path root = scratch_dir();
+  test::make_kitti(root, false, false);
+  auto r = open_sequence(root);
+  EXPECT_DOUBLE_EQ(r->timestamp(2), 0.2);
+  EXPECT_FALSE(r->info().calibration.has_value());
+}
+
+TEST(SevenScenesReader, DepthInMillimetresAndInvalidMarker) {
+  const fs::path root = scratch_dir();
+  test::make_seven_scenes(root);
+  auto r = open_sequence(root);
+  EXPECT_EQ(r->info().kind, DatasetKind::SevenScenes);
+  ASSERT_EQ(r->size(), 3u);
+  EXPECT_DOUBLE_EQ(r->timestamp(2), 2.0 / 30.0);
+  const Frame f = r->read(1);
+  EXPECT_FLOAT_EQ(f.depth.at<float>(10, 10), 1.5f);
+  EXPECT_FLOAT_EQ(f.depth.at<float>(0, 0), 0.0f);  // 65535 = invalid
+  EXPECT_NEAR(f.gt_pose->translation().x(), 0.1, 1e-12);
+  ASSERT_TRUE(r->info().calibration);
+  EXPECT_DOUBLE_EQ(r->info().calibration->fx, 585.0);
+}
+
+TEST(EurocReader, CameraGroundTruthComposesBodyPoseWithExtrinsics) {
+  const fs::path root = scratch_dir();
+  test::make_euroc(root);
+  auto r = open_sequence(root);
+  EXPECT_EQ(r->info().kind, DatasetKind::Euroc);
+  ASSERT_EQ(r->size(), 3u);
+  EXPECT_NEAR(r->timestamp(1) - r->timestamp(0), 0.05, 1e-6);
+  const Frame f = r->read(2);
+  ASSERT_TRUE(f.gt_pose);
+  EXPECT_NEAR(f.gt_pose->translation().x(), 2.5, 1e-9);  // T_WB (x = 2) * T_BS (x = 0.5)
+  ASSERT_TRUE(r->info().calibration);
+  EXPECT_DOUBLE_EQ(r->info().calibration->k1, -0.28);
+}
+
+TEST(ImageFolderReader, NaturalOrderAndRate) {
+  const fs::path root = scratch_dir();
+  for (int i : {1, 2, 10}) test::write_image(root / ("img" + std::to_string(i) + ".png"), i);
+  ReaderOptions o;
+  o.rate = 5;
+  auto r = open_sequence(root, o);
+  EXPECT_EQ(r->info().kind, DatasetKind::ImageFolder);
+  ASSERT_EQ(r->size(), 3u);
+  EXPECT_EQ(r->read(2).image.at<cv::Vec3b>(0, 0)[0], 10);
+  EXPECT_DOUBLE_EQ(r->timestamp(2), 0.4);
+}
+
+TEST(VideoReader, DecodesFramesInOrderAndBySeeking) {
+  const fs::path file = scratch_dir() / "clip.avi";
+  {
+    cv::VideoWriter w(file.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 15, {64, 48});
+    if (!w.isOpened()) GTEST_SKIP() << "this OpenCV build cannot write MJPG video";
+    for (int i = 0; i < 6; ++i) w.write(cv::Mat(48, 64, CV_8UC3, cv::Scalar::all(i * 40)));
+  }
+  auto r = open_sequence(file);
+  EXPECT_EQ(r->info().kind, DatasetKind::Video);
+  ASSERT_EQ(r->size(), 6u);
+  EXPECT_NEAR(r->info().fps, 15, 1e-6);
+  EXPECT_NEAR(r->read(0).image.at<cv::Vec3b>(20, 20)[0], 0, 4);
+  EXPECT_NEAR(r->read(1).image.at<cv::Vec3b>(20, 20)[0], 40, 4);
+  EXPECT_NEAR(r->read(4).image.at<cv::Vec3b>(20, 20)[0], 160, 4);
+}
+
+TEST(SequenceDetection, FormatOverridesAndUnknownLayoutFails) {
+  const fs::path root = scratch_dir();
+  EXPECT_THROW(open_sequence(root), InputError);  // empty folder
+  try {
+    open_sequence(root);
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown layout"), std::string::npos);
+  }
+  test::make_seven_scenes(root);
+  ReaderOptions o;
+  o.kind = DatasetKind::ImageFolder;
+  EXPECT_EQ(open_sequence(root, o)->info().kind, DatasetKind::ImageFolder);
+  EXPECT_THROW(open_sequence(root / "nope"), InputError);
+}
+
+// Bad input: each names the file, the line where there is one, and the problem.
+std::string error_of(const fs::path& root) {
+  try {
+    open_sequence(root)->read(0);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(BadInput, MalformedLineNamesFileAndLine) {
+  const fs::path root = scratch_dir();
+  test::make_tum(root);
+  write_text(root / "rgb.txt", "# c\n1.0 rgb/0.png\n1.03 rgb/1.png extra\n");
+  EXPECT_EQ(error_of(root), (root / "rgb.txt").string() + ":3: expected 'timestamp path', got 3 fields");
+  write_text(root / "rgb.txt", "1.0 rgb/0.png\nabc rgb/1.png\n");
+  EXPECT_EQ(error_of(root), (root / "rgb.txt").string() + ":2: timestamp: 'abc' is not a number");
+}
+
+TEST(BadInput, NonMonotonicTimestamp) {
+  const fs::path root = scratch_dir();
+  test::make_tum(root);
+  write_text(root / "rgb.txt", "1.0 rgb/0.png\n1.1 rgb/1.png\n1.05 rgb/2.png\n");
+  const std::string e = error_of(root);
+  EXPECT_NE(e.find("rgb.txt:3: timestamp 1.05 is not after the previous one 1.1"), std::string::npos) << e;
+}
+
+TEST(BadInput, MissingImageNamesTheIndexLine) {
+  const fs::path root = scratch_dir();
+  test::make_tum(root);
+  fs::remove(root / "rgb" / "3.png");
+  const std::string e = error_of(root);
+  EXPECT_NE(e.find("rgb.txt:7: listed file"), std::string::npos) << e;
+  EXPECT_NE(e.find("3.png' not found"), std::string::npos) << e;
+}
+
+TEST(BadInput, UnreadableImage) {
+  const fs::path root = scratch_dir();
+  test::make_seven_scenes(root);
+  write_text(root / "frame-000001.color.png", "not a png");
+  auto r = open_sequence(root);
+  try {
+    r->read(1);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), (root / "frame-000001.color.png").string() + ": cannot decode the image (corrupt or not an image)");
+  }
+}
+
+TEST(BadInput, MalformedCalibrationAndPoses) {
+  const fs::path root = scratch_dir();
+  test::make_kitti(root);
+  write_text(root / "sequences" / "05" / "calib.txt", "P1: 1 2 3\n");
+  EXPECT_NE(error_of(root).find("calib.txt: no 'P0:' line"), std::string::npos);
+  test::make_kitti(root);
+  write_text(root / "poses" / "05.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n1 0 0 0 0 1 0 0 0 0 1\n");
+  EXPECT_NE(error_of(root).find("05.txt:2: expected 12 values"), std::string::npos) << error_of(root);
+}
+
+}  // namespace
+}  // namespace wardmap::slam::io

@@ -1,0 +1,106 @@
+#include "slam/io/settings.h"
+
+#include <gtest/gtest.h>
+
+#include "slam/core/errors.h"
+#include "tests/support/test_support.h"
+
+namespace wardmap::slam::io {
+namespace {
+
+std::string error_of(const std::string& yaml) {
+  try {
+    parse_settings(yaml, "s.yaml");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+const char* kOrbSlam3 = R"(%YAML:1.0
+Camera.type: "PinHole"
+Camera1.fx: 517.306408
+Camera1.fy: 516.469215
+Camera1.cx: 318.643040
+Camera1.cy: 255.313989
+Camera1.k1: 0.262383
+Camera1.k2: -0.953104
+Camera1.p1: -0.005358
+Camera1.p2: 0.002628
+Camera1.k3: 1.163314
+Camera.width: 640
+Camera.height: 480
+Camera.fps: 30
+Camera.RGB: 1
+RGBD.DepthMapFactor: 5000.0
+Tcw: !!opencv-matrix
+  rows: 2
+  cols: 2
+  dt: f
+  data: [1, 0, 0, 1]
+tracking:
+  max_lost_seconds: 2.5
+)";
+
+TEST(Settings, AcceptsOrbSlam3FileUnchanged) {
+  const Settings s = parse_settings(kOrbSlam3, "TUM1.yaml");
+  EXPECT_DOUBLE_EQ(s.camera.camera.fx, 517.306408);
+  EXPECT_DOUBLE_EQ(s.camera.camera.k3, 1.163314);
+  EXPECT_EQ(s.camera.camera.width, 640);
+  EXPECT_DOUBLE_EQ(*s.camera.depth_map_factor, 5000.0);
+  double v = 1.0;
+  read_option(s.section("tracking"), "tracking", "max_lost_seconds", v, s.file);
+  EXPECT_DOUBLE_EQ(v, 2.5);
+  int untouched = 7;
+  read_option(s.section("tracking"), "tracking", "absent", untouched, s.file);
+  EXPECT_EQ(untouched, 7);
+}
+
+TEST(Settings, OrbSlam2KeysToo) {
+  const Settings s = parse_settings("Camera.fx: 500\nCamera.fy: 500\nCamera.cx: 320\nCamera.cy: 240\n"
+                                    "Camera.width: 640\nCamera.height: 480\nDepthMapFactor: 1000\n", "s2.yaml");
+  EXPECT_DOUBLE_EQ(s.camera.camera.fx, 500);
+  EXPECT_DOUBLE_EQ(*s.camera.depth_map_factor, 1000);
+}
+
+TEST(Settings, ErrorsNameTheKey) {
+  EXPECT_EQ(error_of("Camera1.fy: 1\nCamera1.cx: 1\nCamera1.cy: 1\n"), "s.yaml: missing key 'Camera1.fx' (camera calibration)");
+  EXPECT_EQ(error_of("Camera1.fx: abc\n"), "s.yaml:1: key 'Camera1.fx': expected a number, got 'abc'");
+  EXPECT_EQ(error_of("Camera.type: \"KannalaBrandt8\"\n"),
+            "s.yaml: key 'Camera.type': 'KannalaBrandt8' is not supported (allowed: PinHole)");
+  EXPECT_NE(error_of("Camera1.fx: -5\nCamera1.fy: 1\nCamera1.cx: 1\nCamera1.cy: 1\nCamera.width: 9\nCamera.height: 9\n")
+                .find("fx must be positive"), std::string::npos);
+  EXPECT_NE(error_of("a: [1, 2\n").find("s.yaml:2: YAML syntax error"), std::string::npos) << error_of("a: [1, 2\n");
+  const Settings s = parse_settings(kOrbSlam3, "t.yaml");
+  std::string e;
+  try {
+    bool flag;
+    read_option(s.root, "tracking", "max_lost_seconds", flag, "t.yaml");
+    read_option(s.section("tracking"), "tracking", "max_lost_seconds", flag, "t.yaml");
+  } catch (const InputError& ex) {
+    e = ex.what();
+  }
+  EXPECT_EQ(e, "t.yaml:23: key 'tracking.max_lost_seconds': expected true or false, got '2.5'");
+  EXPECT_THROW(check_range(5, 0, 1, "tracking.ratio", "t.yaml"), InputError);
+}
+
+TEST(Settings, ShippedFilesLoad) {
+  const auto dir = test::source_dir() / "data" / "settings";
+  int n = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    if (e.path().extension() != ".yaml") continue;
+    EXPECT_NO_THROW(load_settings(e.path())) << e.path();
+    ++n;
+  }
+  EXPECT_GE(n, 8);
+  const Settings k = load_settings(dir / "KITTI03.yaml");
+  EXPECT_DOUBLE_EQ(k.camera.camera.fx, 721.5377);
+  EXPECT_EQ(k.camera.camera.width, 1242);
+  const Settings s7 = load_settings(dir / "7Scenes.yaml");
+  EXPECT_DOUBLE_EQ(s7.camera.camera.fx, 585.0);
+  EXPECT_DOUBLE_EQ(*s7.camera.depth_map_factor, 1000.0);
+  EXPECT_EQ(suggest_settings_name("KITTI odometry", "x", 1242), "KITTI03.yaml");
+}
+
+}  // namespace
+}  // namespace wardmap::slam::io
