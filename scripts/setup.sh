@@ -2,15 +2,18 @@
 # wardmap set-up on Debian 12: installs every package the project needs, builds Release into
 # build/, and (unless --no-run) runs the main job on the default input.
 #   scripts/setup.sh            install + build + run the default job
-#   scripts/setup.sh --no-run   install + build only (what scripts/test.sh and CI use)
+#   scripts/setup.sh --no-run   install + build only
+#   scripts/setup.sh --deps-only install the packages only (what scripts/test.sh uses)
 # Idempotent; works as root or through sudo.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 RUN_MAIN=1
+DEPS_ONLY=0
 for a in "$@"; do
   case "$a" in
     --no-run) RUN_MAIN=0 ;;
-    -h|--help) sed -n '2,6p' "$0"; exit 0 ;;
+    --deps-only) DEPS_ONLY=1 ;;
+    -h|--help) sed -n '2,8p' "$0"; exit 0 ;;
     *) echo "setup.sh: unknown option '$a' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -25,35 +28,25 @@ PKGS=(build-essential cmake pkg-config git ca-certificates
       libopencv-dev libeigen3-dev libceres-dev colmap libtinygltf-dev libvtk9-dev
       libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev libspdlog-dev
       libyaml-cpp-dev xvfb xauth)
-# npm for the glTF validator; a machine with Node's own build already has npm (and conflicts with Debian's).
-command -v npm >/dev/null || PKGS+=(nodejs npm)
-
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if [ ${#missing[@]} -gt 0 ]; then
   echo "setup.sh: installing ${#missing[@]} Debian packages: ${missing[*]}"
-  export DEBIAN_FRONTEND=noninteractive
-  $SUDO apt-get update
-  $SUDO apt-get install -y --no-install-recommends "${missing[@]}"
+  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get update
+  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"
 else
   echo "setup.sh: all Debian packages present"
 fi
 
-# Khronos glTF validator (npm), used by the glTF export test; local to the project.
-if [ ! -x tools/node_modules/.bin/gltf_validator ] && [ ! -f tools/node_modules/gltf-validator/package.json ]; then
-  mkdir -p tools
-  (cd tools && npm install --no-audit --no-fund --silent gltf-validator@2) \
-    || echo "setup.sh: warning: npm could not install gltf-validator; its test will be skipped"
-fi
+[ "$DEPS_ONLY" -eq 1 ] && exit 0
 
 JOBS=$(nproc 2>/dev/null || echo 2)
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$JOBS"
 
 if [ "$RUN_MAIN" -eq 1 ]; then
-  DATA=${WARDMAP_DATA:-}
   echo "setup.sh: running the main job on the default input"
   scripts/run-default.sh
 fi

@@ -92,12 +92,12 @@ cv::Mat plot_top_view(const std::vector<PlotSeries>& series, const std::string& 
     for (const auto& p : s.points) poly.push_back(to_px(p(ax), p(ay)));
     if (poly.size() > 1) cv::polylines(img, poly, false, s.colour, 2, cv::LINE_AA);
     if (!poly.empty()) cv::circle(img, poly.front(), 5, s.colour, cv::FILLED, cv::LINE_AA);  // start
-    const int lx = left + static_cast<int>(pw) - 230;
+    const int lx = left + static_cast<int>(pw) - 290;
     cv::line(img, cv::Point(lx, legend_y - 5), cv::Point(lx + 30, legend_y - 5), s.colour, 3, cv::LINE_AA);
     cv::putText(img, s.label, cv::Point(lx + 40, legend_y), font, 0.5, ink, 1, cv::LINE_AA);
     legend_y += 22;
   }
-  cv::putText(img, "dot = start", cv::Point(left + static_cast<int>(pw) - 190, legend_y), font, 0.45, cv::Scalar(120, 120, 120),
+  cv::putText(img, "dot = start", cv::Point(left + static_cast<int>(pw) - 250, legend_y), font, 0.45, cv::Scalar(120, 120, 120),
               1, cv::LINE_AA);
   return img;
 }
