@@ -1,10 +1,13 @@
 #include "apps/commands/commands.h"
 
+#include "apps/commands/synth.h"
+
 namespace wardmap::apps {
 
 void register_commands(CLI::App& app) {
   add_info_command(app);
   add_eval_command(app);
+  add_synth_command(app);
 }
 
 }  // namespace wardmap::apps

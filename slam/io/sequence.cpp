@@ -6,10 +6,13 @@
 #include <stdexcept>
 
 #include "slam/core/errors.h"
+#include "slam/io/settings.h"
 
 namespace wardmap::slam::io {
 
 namespace fs = std::filesystem;
+
+std::unique_ptr<SequenceReader> open_by_kind(DatasetKind kind, const fs::path& path, const ReaderOptions& options);
 
 std::string to_string(DatasetKind kind) {
   switch (kind) {
@@ -69,6 +72,15 @@ Frame SequenceReader::read(size_t i) {
     f.depth = load_depth(e.depth, info_.depth_factor, info_.kind == DatasetKind::SevenScenes ? 65535 : -1);
   f.gt_pose = e.gt_pose;
   return f;
+}
+
+void SequenceReader::set_calibration(const PinholeCamera& camera, const std::string& source) {
+  if (camera.width != info_.width || camera.height != info_.height)
+    throw InputError(source, "Camera.width/height " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
+                                 " do not match the sequence's images " + std::to_string(info_.width) + "x" +
+                                 std::to_string(info_.height));
+  info_.calibration = camera;
+  info_.calibration_source = source;
 }
 
 void SequenceReader::finish_opening() {
@@ -147,6 +159,17 @@ DatasetKind detect_dataset_kind(const fs::path& path) {
 std::unique_ptr<SequenceReader> open_sequence(const fs::path& path, const ReaderOptions& options) {
   if (!fs::exists(path)) throw InputError(path.string(), "no such file or folder");
   const DatasetKind kind = options.kind ? *options.kind : detect_dataset_kind(path);
+  std::unique_ptr<SequenceReader> reader = open_by_kind(kind, path, options);
+  // A settings file inside the sequence folder (wardmap synth writes one) is its calibration.
+  const fs::path settings = fs::is_directory(path) ? path / "settings.yaml" : fs::path();
+  if (!reader->info().calibration && !settings.empty() && fs::exists(settings)) {
+    const Settings s = load_settings(settings);
+    reader->set_calibration(s.camera.camera, settings.string());
+  }
+  return reader;
+}
+
+std::unique_ptr<SequenceReader> open_by_kind(DatasetKind kind, const fs::path& path, const ReaderOptions& options) {
   switch (kind) {
     case DatasetKind::TumRgbd: return open_tum(path, options);
     case DatasetKind::Kitti: return open_kitti(path, options);

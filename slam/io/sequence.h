@@ -66,6 +66,8 @@ class SequenceReader {
   virtual Frame read(size_t i);
   // The ground-truth trajectory as the dataset gives it (may be denser than the frames).
   const Trajectory& ground_truth() const { return ground_truth_; }
+  // Calibration found beside the dataset (a settings.yaml in its folder); the image size must match.
+  void set_calibration(const PinholeCamera& camera, const std::string& source);
 
  protected:
   struct Entry {
