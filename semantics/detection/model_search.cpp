@@ -1,0 +1,45 @@
+#include "semantics/detection/model_search.h"
+
+#include <cstdlib>
+
+#include "slam/core/errors.h"
+
+namespace wardmap::semantics {
+
+namespace fs = std::filesystem;
+
+namespace {
+// Relative file of the OSNet x0.25 re-id model inside a models folder (MODELS.md).
+constexpr const char* kOsnetFile = "osnet-x0_25/osnet_x0_25_msmt17.onnx";
+}  // namespace
+
+std::vector<fs::path> model_search_path(const fs::path& models_dir) {
+  std::vector<fs::path> dirs;
+  if (!models_dir.empty()) dirs.push_back(models_dir);
+  if (const char* env = std::getenv("WARDMAP_MODELS"); env && *env) dirs.emplace_back(env);
+  dirs.emplace_back(WARDMAP_DEFAULT_MODELS_DIR);
+  return dirs;
+}
+
+fs::path find_model_file(const fs::path& relative, const fs::path& models_dir) {
+  if (relative.is_absolute()) {
+    if (fs::is_regular_file(relative)) return relative;
+    throw InputError(relative.string(), "model file not found");
+  }
+  std::string looked;
+  for (const fs::path& dir : model_search_path(models_dir)) {
+    const fs::path candidate = dir / relative;
+    if (fs::is_regular_file(candidate)) return candidate;
+    looked += (looked.empty() ? "" : ", ") + candidate.string();
+  }
+  throw InputError(
+      relative.string(),
+      "model file not found; looked in: " + looked +
+          " (set detection.models_dir or $WARDMAP_MODELS; models/README.md says where to get the weights)");
+}
+
+fs::path model_descriptions_dir() { return fs::path(WARDMAP_MODEL_DESCRIPTIONS_DIR); }
+
+fs::path find_embedder_file(const fs::path& models_dir) { return find_model_file(kOsnetFile, models_dir); }
+
+}  // namespace wardmap::semantics
