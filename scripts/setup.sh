@@ -28,6 +28,9 @@ PKGS=(build-essential cmake pkg-config git ca-certificates
       libopencv-dev libeigen3-dev libceres-dev colmap libtinygltf-dev libvtk9-dev
       libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev libspdlog-dev
       libyaml-cpp-dev xvfb xauth)
+# Node runs the Khronos glTF validator in the tests. Ask apt for Debian's nodejs and npm only when
+# there is no npm at all: a NodeSource nodejs bundles npm and conflicts with Debian's npm package.
+command -v npm >/dev/null || PKGS+=(nodejs npm)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -38,6 +41,16 @@ if [ ${#missing[@]} -gt 0 ]; then
   $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"
 else
   echo "setup.sh: all Debian packages present"
+fi
+
+# The glTF validator (npm package gltf-validator, tests/tools/package.json), installed as the
+# invoking user into tests/tools/node_modules.
+if [ -d tests/tools/node_modules/gltf-validator ]; then
+  echo "setup.sh: glTF validator present"
+else
+  echo "setup.sh: installing the glTF validator (npm) into tests/tools"
+  npm install --prefix tests/tools --no-audit --no-fund ||
+    { echo "setup.sh: 'npm install --prefix tests/tools' failed (is the npm registry reachable?)" >&2; exit 1; }
 fi
 
 [ "$DEPS_ONLY" -eq 1 ] && exit 0

@@ -9,5 +9,8 @@ void register_commands(CLI::App& app);
 
 void add_info_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
+void add_run_command(CLI::App& app);
+void add_eval_objects_command(CLI::App& app);
+void add_compare_command(CLI::App& app);
 
 }  // namespace wardmap::apps

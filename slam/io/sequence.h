@@ -62,6 +62,8 @@ class SequenceReader {
   const SequenceInfo& info() const { return info_; }
   size_t size() const { return entries_.size(); }
   double timestamp(size_t i) const { return entries_.at(i).timestamp; }
+  // Ground-truth pose of frame i without decoding it.
+  const std::optional<SE3>& gt_pose(size_t i) const { return entries_.at(i).gt_pose; }
   // Decodes frame i; throws InputError naming the image file when it is missing or unreadable.
   virtual Frame read(size_t i);
   // The ground-truth trajectory as the dataset gives it (may be denser than the frames).

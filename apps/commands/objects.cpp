@@ -1,0 +1,119 @@
+// wardmap eval-objects: object figures of a run folder against a synthetic sequence's ground truth.
+// wardmap compare: both association modes on the same sequences, one table (Assoc. Table II).
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <memory>
+
+#include "apps/commands/commands.h"
+#include "apps/semantic_job.h"
+#include "slam/core/errors.h"
+#include "slam/eval/trajectory_eval.h"
+#include "slam/io/sequence.h"
+#include "slam/io/text_file.h"
+#include "slam/io/trajectory_io.h"
+
+namespace wardmap::apps {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+void add_semantic_options(CLI::App* cmd, SemanticJob& job);  // run.cpp
+
+namespace {
+
+struct EvalObjectsArgs {
+  std::string run, sequence, json, align = "se3";
+};
+
+void eval_objects(const EvalObjectsArgs& a) {
+  const fs::path run = a.run, seq = a.sequence;
+  for (const char* f : {"measurements.jsonl", "objects.json", "trajectory.txt"})
+    if (!fs::exists(run / f)) throw InputError((run / f).string(), "not found: is this a wardmap run folder?");
+  for (const char* f : {"objects.json", "annotations.jsonl"})
+    if (!fs::exists(seq / f)) throw InputError((seq / f).string(), "not found: object ground truth comes from wardmap synth sequences");
+  // The run's world onto the ground truth's, by the trajectory alignment of EVALUATION.md.
+  slam::Sim3 align;
+  if (a.align != "none") {
+    auto reader = slam::io::open_sequence(seq);
+    const auto est = slam::io::read_trajectory(run / "trajectory.txt");
+    const auto pairs = slam::eval::associate(reader->ground_truth(), est, {});
+    align = slam::eval::compute_ate(reader->ground_truth(), est, pairs, slam::eval::parse_alignment(a.align)).transform;
+  }
+  std::vector<semantics::TrueObject> landmarks = semantics::read_objects_json(run / "objects.json");
+  const auto e = semantics::evaluate_objects(semantics::read_measurements_jsonl(run / "measurements.jsonl"), landmarks,
+                                             semantics::read_objects_json(seq / "objects.json"),
+                                             semantics::load_annotations(seq / "annotations.jsonl"), align);
+  std::printf("%s", format_object_evaluation(e).c_str());
+  if (!a.json.empty()) {
+    json j = {{"run", a.run}, {"sequence", a.sequence}, {"association_accuracy", e.association_accuracy},
+              {"landmarks", e.landmarks}, {"objects_seen", e.objects_seen}, {"objects_mapped", e.objects_mapped},
+              {"position_error_mean", e.position_error_mean}, {"position_error_max", e.position_error_max},
+              {"id_switches", e.id_switches}, {"mota", e.mota}, {"dropped", e.dropped},
+              {"false_positives", e.false_positives}, {"identified", e.identified}};
+    slam::io::write_file_atomic(a.json, j.dump(2) + "\n");
+  }
+}
+
+struct CompareArgs {
+  std::vector<std::string> sequences;
+  SemanticJob job;
+  std::string json;
+};
+
+void compare(CompareArgs& a) {
+  json rows = json::array();
+  std::printf("%-28s | %-12s | %9s | %7s | %9s | %8s | %8s | %7s\n", "sequence", "association", "accuracy", "objects",
+              "Object_GT", "pos.err", "max err", "ID sw.");
+  std::printf("%s\n", std::string(110, '-').c_str());
+  for (const auto& s : a.sequences) {
+    for (const char* mode : {"hdp-only", "hierarchical"}) {
+      SemanticJob job = a.job;
+      job.sequence = s;
+      job.association = mode;
+      job.out.clear();
+      job.progress = false;
+      const SemanticRun r = run_semantic_job(job);
+      if (!r.evaluation) throw InputError(s, "no object ground truth (objects.json + annotations.jsonl): use a wardmap synth sequence");
+      const auto& e = *r.evaluation;
+      std::printf("%-28s | %-12s | %8.2f%% | %7d | %9d | %6.3f m | %6.3f m | %7d\n", fs::path(s).filename().c_str(), mode,
+                  e.association_accuracy, e.landmarks, e.objects_seen, e.position_error_mean, e.position_error_max,
+                  e.id_switches);
+      std::fflush(stdout);
+      rows.push_back({{"sequence", s}, {"association", mode}, {"accuracy", e.association_accuracy},
+                      {"landmarks", e.landmarks}, {"objects_seen", e.objects_seen},
+                      {"position_error_mean", e.position_error_mean}, {"position_error_max", e.position_error_max},
+                      {"id_switches", e.id_switches}, {"dropped", e.dropped}, {"identified", e.identified}});
+    }
+  }
+  if (!a.json.empty()) slam::io::write_file_atomic(a.json, rows.dump(2) + "\n");
+}
+
+}  // namespace
+
+void add_eval_objects_command(CLI::App& app) {
+  auto a = std::make_shared<EvalObjectsArgs>();
+  auto* cmd = app.add_subcommand("eval-objects",
+                                 "Object figures of a run folder against a synthetic sequence (docs/EVALUATION.md):\n"
+                                 "association accuracy, object count, landmark position error, MOT ID switches");
+  cmd->add_option("--run", a->run, "Run folder written by wardmap run")->required();
+  cmd->add_option("--sequence", a->sequence, "The synthetic sequence the run was made on")->required();
+  cmd->add_option("--align", a->align, "Trajectory alignment applied to the landmarks: se3, sim3 or none")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"se3", "sim3", "none"}));
+  cmd->add_option("--json", a->json, "Also write the figures as JSON");
+  cmd->callback([a] { eval_objects(*a); });
+}
+
+void add_compare_command(CLI::App& app) {
+  auto a = std::make_shared<CompareArgs>();
+  auto* cmd = app.add_subcommand("compare",
+                                 "Run both association modes (hdp-only baseline, hierarchical) on the same synthetic\n"
+                                 "sequences with ground-truth poses and print one table, as the paper's Table II");
+  cmd->add_option("sequences", a->sequences, "Synthetic sequences (wardmap synth outputs)")->required();
+  cmd->add_option("--json", a->json, "Also write the table as JSON");
+  add_semantic_options(cmd, a->job);
+  cmd->callback([a] { compare(*a); });
+}
+
+}  // namespace wardmap::apps

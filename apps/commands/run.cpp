@@ -1,0 +1,80 @@
+// wardmap run <sequence>: the semantic layer on ground-truth poses (--poses gt); the SLAM
+// front-process (--poses slam) is not written yet.
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <map>
+#include <memory>
+
+#include "apps/commands/commands.h"
+#include "apps/semantic_job.h"
+#include "slam/core/errors.h"
+
+namespace wardmap::apps {
+
+namespace {
+
+struct RunArgs {
+  SemanticJob job;
+  std::string poses = "gt";
+  std::string mode = "rgbd";
+  bool deterministic = false;
+};
+
+void run(RunArgs& a) {
+  if (a.poses != "gt")
+    throw std::runtime_error("--poses slam: the SLAM front-process is not available yet; use --poses gt");
+  if (a.mode != "rgbd")
+    throw InputError(a.job.sequence.string(), "--poses gt measures objects from depth: use --mode rgbd on a sequence with depth");
+  spdlog::info("run: {} (poses: ground truth, detector: {}, association: {})", a.job.sequence.string(), a.job.detector,
+               a.job.association);
+  const SemanticRun r = run_semantic_job(a.job);
+  std::printf("frames %d, keyframes %zu, groups %d, group objects %d, measurements %zu, landmarks %zu\n", r.frames,
+              r.keyframes.size(), r.result.num_groups, r.result.num_group_objects, r.measurements.size(),
+              r.result.landmarks.size());
+  std::map<std::string, int> by_class;
+  for (const auto& l : r.result.landmarks) ++by_class[l.label];
+  std::printf("objects by class:");
+  for (const auto& [label, n] : by_class) std::printf(" %s %d", label.c_str(), n);
+  std::printf("\n");
+  if (r.evaluation) std::printf("%s", format_object_evaluation(*r.evaluation).c_str());
+  if (!a.job.out.empty()) std::printf("outputs in %s\n", a.job.out.c_str());
+}
+
+}  // namespace
+
+void add_semantic_options(CLI::App* cmd, SemanticJob& job) {
+  cmd->add_option("--settings", job.settings, "Settings YAML: camera (ORB-SLAM3 keys) and the semantics/detection sections");
+  cmd->add_option("--detector", job.detector, "Object detector: annotations (synthetic sequences), yolox or nanodet")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"annotations", "yolox", "nanodet"}));
+  cmd->add_option("--classes", job.landmark_set, "Landmark class set of the network detectors: hospital, road or indoor "
+                                                 "(default: road on KITTI, indoor otherwise)")
+      ->check(CLI::IsMember({"hospital", "road", "indoor", "coco"}));
+  cmd->add_option("--models", job.models_dir, "Folder searched first for the ONNX weights (then $WARDMAP_MODELS, ../shared/models)");
+  cmd->add_flag("!--no-embedding", job.embedding, "Do not compute OSNet appearance embeddings");
+  cmd->add_option("--seed", job.seed, "Seed of the detector noise and of the Gibbs sampler")->capture_default_str();
+}
+
+void add_run_command(CLI::App& app) {
+  auto a = std::make_shared<RunArgs>();
+  auto* cmd = app.add_subcommand(
+      "run",
+      "Run wardmap on a sequence and write a run folder: trajectory.txt, frames.csv, keyframes.txt, objects.json,\n"
+      "measurements.jsonl, map.glb, report.json and report.md (with the object figures when the sequence has object ground truth).\n"
+      "Today only --poses gt works: the semantic layer on the sequence's ground-truth poses.");
+  cmd->add_option("sequence", a->job.sequence, "Sequence folder (TUM RGB-D, 7-Scenes, a wardmap synth output, ...)")->required();
+  cmd->add_option("--out", a->job.out, "Run folder to write");
+  cmd->add_option("--poses", a->poses, "Camera poses: gt (the sequence's ground truth) or slam (not available yet)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"gt", "slam"}));
+  cmd->add_option("--mode", a->mode, "Input mode: rgbd or mono")->capture_default_str()->check(CLI::IsMember({"rgbd", "mono"}));
+  cmd->add_option("--association", a->job.association, "Object association: hierarchical (the paper) or hdp-only (HDP-SLAM baseline)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"hierarchical", "hdp-only"}));
+  cmd->add_flag("--deterministic", a->deterministic, "Same input and seed give identical output (the semantic layer always is)");
+  add_semantic_options(cmd, a->job);
+  cmd->callback([a] { run(*a); });
+}
+
+}  // namespace wardmap::apps

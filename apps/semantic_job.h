@@ -1,0 +1,45 @@
+// The semantic layer run on a sequence with known poses (wardmap run --poses gt, wardmap compare):
+// keyframes from the ground truth, detection, embedding, measurement, groups, MOT, HDP, pose
+// selection; then the run folder's files and the object figures.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "semantics/detection/detector_options.h"
+#include "semantics/object_association.h"
+#include "semantics/object_metrics.h"
+#include "semantics/options.h"
+#include "semantics/semantic_mapper.h"
+
+namespace wardmap::apps {
+
+struct SemanticJob {
+  std::filesystem::path sequence;
+  std::filesystem::path settings;     // optional: camera + `semantics` / `detection` sections
+  std::filesystem::path out;          // run folder; empty: write nothing
+  std::string detector = "annotations";
+  std::string association = "hierarchical";
+  std::string landmark_set;           // empty: road for KITTI, indoor otherwise
+  std::filesystem::path models_dir;
+  bool embedding = true;
+  std::uint64_t seed = 1;
+  bool progress = true;
+};
+
+struct SemanticRun {
+  semantics::AssociationResult result;
+  std::vector<semantics::ObjectMeasurement> measurements;
+  std::vector<semantics::KeyframeRecord> keyframes;
+  semantics::StageTimes times;
+  std::optional<semantics::ObjectEvaluation> evaluation;  // when the sequence has object ground truth
+  int frames = 0;
+};
+
+SemanticRun run_semantic_job(const SemanticJob& job);
+
+// One line per figure, for the terminal.
+std::string format_object_evaluation(const semantics::ObjectEvaluation& e);
+
+}  // namespace wardmap::apps

@@ -1,0 +1,90 @@
+#include "semantics/association_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace wardmap::semantics {
+
+namespace {
+
+constexpr double kNegInf = -std::numeric_limits<double>::infinity();
+
+hdp::GaussianMixtureOptions gmm_options(const AssociationOptions& o) {
+  hdp::GaussianMixtureOptions g;
+  g.sigma_per_dim.resize(6);
+  g.sigma_per_dim << o.sigma_position, o.sigma_position, o.sigma_position, o.sigma_rotation, o.sigma_rotation,
+      o.sigma_rotation;
+  return g;
+}
+
+bool share_measurement(const GroupObject& a, const GroupObject& b) {
+  auto i = a.measurements.begin(), j = b.measurements.begin();
+  while (i != a.measurements.end() && j != b.measurements.end()) {
+    if (*i < *j) ++i;
+    else if (*j < *i) ++j;
+    else return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+Eigen::VectorXd pose_feature(const ObjectPose& pose) {
+  Eigen::VectorXd f(6);
+  f.head<3>() = pose.pose.translation();
+  f.tail<3>() = slam::so3_log(pose.pose.rotation_matrix());
+  return f;
+}
+
+AssociationModel::AssociationModel(const std::vector<GroupObject>& objects, const std::vector<std::vector<int>>& groups,
+                                   const AssociationOptions& options)
+    : objects_(objects), groups_(groups), options_(options) {
+  const auto g = gmm_options(options);
+  gmms_.reserve(objects.size());
+  for (const auto& o : objects) gmms_.push_back(hdp::GaussianMixture::from_measurements(o.features, g));
+  // A single component evaluated new_landmark_distance away along one position axis.
+  Eigen::VectorXd zero = Eigen::VectorXd::Zero(6), at = zero;
+  at(0) = options.new_landmark_distance;
+  log_new_ = hdp::GaussianMixture::from_measurements({zero}, g).log_density(at);
+}
+
+// Assoc. III-A.2: max GMM probability of the item's measurements under the member's GMM, x1.5 when
+// they share measurements in overlapping keyframes.
+double AssociationModel::log_prior(int item_object, int member_object) const {
+  const GroupObject& a = objects_[item_object];
+  const GroupObject& b = objects_[member_object];
+  double lp = log_new_;
+  if (!a.features.empty() && !gmms_[member_object].empty()) lp = gmms_[member_object].max_log_density(a.features);
+  if (share_measurement(a, b)) lp += std::log(options_.overlap_boost);
+  return lp;
+}
+
+double AssociationModel::appearance_term(const Eigen::VectorXf& a, const Eigen::VectorXf& b) const {
+  if (a.size() == 0 || b.size() == 0 || a.size() != b.size()) return 0.0;
+  return options_.appearance_weight * (static_cast<double>(a.dot(b)) - options_.appearance_neutral);
+}
+
+double AssociationModel::log_predictive(const hdp::ItemRef& item, const std::vector<hdp::ItemRef>& members) const {
+  const int io = groups_[item.group][item.item];
+  const GroupObject& obj = objects_[io];
+  double best = kNegInf;
+  Eigen::VectorXf mean_embedding;
+  for (const auto& m : members) {
+    const int mo = groups_[m.group][m.item];
+    if (objects_[mo].label != obj.label) return kNegInf;  // class: landmarks hold one class
+    best = std::max(best, log_prior(io, mo));
+    const auto& e = objects_[mo].embedding;
+    if (e.size() > 0) mean_embedding = mean_embedding.size() ? Eigen::VectorXf(mean_embedding + e) : e;
+  }
+  if (mean_embedding.size() > 0 && mean_embedding.norm() > 0) mean_embedding.normalize();
+  return best + appearance_term(obj.embedding, mean_embedding);
+}
+
+double AssociationModel::log_predictive_new(const hdp::ItemRef&) const { return log_new_; }
+
+bool AssociationModel::cannot_link(const hdp::ItemRef& a, const hdp::ItemRef& b) const {
+  return object(a).label != object(b).label;
+}
+
+}  // namespace wardmap::semantics

@@ -1,0 +1,54 @@
+// The model the HDP Gibbs sampler (hdp/) uses to associate group objects across keyframe groups
+// (Assoc. III-A.2): the prior that group object O^G_{n,i} joins landmark k is the largest GMM
+// probability of O^G_{n,i}'s measurements under the GMM (Assoc. Eq. 2-3) of one of k's group
+// objects, times 1.5 when they share measurements in overlapping keyframes; appearance (embedding
+// cosine) and class enter the likelihood.
+#pragma once
+
+#include <vector>
+
+#include "hdp/crf_model.h"
+#include "hdp/gaussian_mixture.h"
+#include "semantics/object_measurement.h"
+#include "semantics/options.h"
+
+namespace wardmap::semantics {
+
+// One group object O^G_{n,i}: the measurements MOT tied together inside keyframe group n (or, in the
+// HDP-only baseline, a single measurement of one keyframe).
+struct GroupObject {
+  int group = -1;
+  std::string label;
+  std::vector<int> measurements;         // ids, sorted
+  std::vector<Eigen::VectorXd> features;  // 6-D pose features of the measurements with a pose
+  Eigen::VectorXf embedding;              // normalised mean of the measurements' embeddings
+};
+
+// 6-D pose feature of a measurement (Assoc. Eq. 2): world position and rotation vector.
+Eigen::VectorXd pose_feature(const ObjectPose& pose);
+
+class AssociationModel : public hdp::CrfModel {
+ public:
+  // groups[j][i] = index into `objects` of item i of group j. Objects must outlive the model.
+  AssociationModel(const std::vector<GroupObject>& objects, const std::vector<std::vector<int>>& groups,
+                   const AssociationOptions& options);
+
+  double log_predictive(const hdp::ItemRef& item, const std::vector<hdp::ItemRef>& dish_members) const override;
+  double log_predictive_new(const hdp::ItemRef& item) const override;
+  bool cannot_link(const hdp::ItemRef& a, const hdp::ItemRef& b) const override;
+
+  // log of the prior term alone (max GMM probability, overlap boost) of `item` joining `member`.
+  double log_prior(int item_object, int member_object) const;
+
+ private:
+  const GroupObject& object(const hdp::ItemRef& r) const { return objects_[groups_[r.group][r.item]]; }
+  double appearance_term(const Eigen::VectorXf& a, const Eigen::VectorXf& b) const;
+
+  const std::vector<GroupObject>& objects_;
+  std::vector<std::vector<int>> groups_;
+  AssociationOptions options_;
+  std::vector<hdp::GaussianMixture> gmms_;  // per object (Assoc. Eq. 2)
+  double log_new_ = 0;                       // GMM log density at new_landmark_distance
+};
+
+}  // namespace wardmap::semantics

@@ -1,0 +1,219 @@
+#include "semantics/object_association.h"
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+
+#include "hdp/crf_sampler.h"
+#include "mot/tracker.h"
+#include "semantics/pose_selection.h"
+
+namespace wardmap::semantics {
+
+namespace {
+
+int class_index(const std::string& label, std::map<std::string, int>& classes) {
+  return classes.emplace(label, static_cast<int>(classes.size())).first->second;
+}
+
+GroupObject make_group_object(int group, const std::vector<int>& ids, const std::vector<ObjectMeasurement>& ms) {
+  GroupObject o;
+  o.group = group;
+  o.measurements = ids;
+  std::sort(o.measurements.begin(), o.measurements.end());
+  std::map<std::string, int> votes;
+  for (int id : o.measurements) {
+    const auto& m = ms[id];
+    ++votes[m.label];
+    if (m.pose) o.features.push_back(pose_feature(*m.pose));
+    if (m.embedding.size() > 0) o.embedding = o.embedding.size() ? Eigen::VectorXf(o.embedding + m.embedding) : m.embedding;
+  }
+  o.label = std::max_element(votes.begin(), votes.end(), [](auto& a, auto& b) { return a.second < b.second; })->first;
+  if (o.embedding.size() > 0 && o.embedding.norm() > 0) o.embedding.normalize();
+  return o;
+}
+
+// Splits one MOT track (measurement ids in keyframe order) where its 3-D positions disagree: each
+// placed measurement joins the segment whose mean position is nearest within split_distance, or
+// starts a new one; unplaced measurements stay with the latest segment.
+std::vector<std::vector<int>> split_track_by_position(const std::vector<int>& ids, const std::vector<ObjectMeasurement>& ms,
+                                                      double split_distance) {
+  std::vector<std::vector<int>> segments;
+  std::vector<Eigen::Vector3d> sums;
+  std::vector<int> counts;
+  int latest = -1;
+  for (int id : ids) {
+    if (!ms[id].pose) {
+      if (latest < 0) {
+        segments.emplace_back();
+        sums.emplace_back(Eigen::Vector3d::Zero());
+        counts.push_back(0);
+        latest = static_cast<int>(segments.size()) - 1;
+      }
+      segments[latest].push_back(id);
+      continue;
+    }
+    const Eigen::Vector3d p = ms[id].pose->pose.translation();
+    int best = -1;
+    double best_d = split_distance;
+    for (size_t s = 0; s < segments.size(); ++s) {
+      if (counts[s] == 0) continue;
+      const double d = (sums[s] / counts[s] - p).norm();
+      if (d <= best_d) best_d = d, best = static_cast<int>(s);
+    }
+    if (best < 0) {
+      // An unplaced-only segment adopts its first placed measurement.
+      if (latest >= 0 && counts[latest] == 0) best = latest;
+      else {
+        segments.emplace_back();
+        sums.emplace_back(Eigen::Vector3d::Zero());
+        counts.push_back(0);
+        best = static_cast<int>(segments.size()) - 1;
+      }
+    }
+    segments[best].push_back(id);
+    sums[best] += p;
+    ++counts[best];
+    latest = best;
+  }
+  return segments;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+std::vector<std::pair<int, int>> track_in_group(const std::vector<int>& group_keyframes,
+                                                const std::vector<std::vector<int>>& by_keyframe,
+                                                const std::vector<ObjectMeasurement>& measurements,
+                                                const mot::TrackerOptions& options) {
+  mot::Tracker tracker(options);
+  std::map<std::string, int> classes;
+  std::vector<std::pair<int, int>> out;  // (measurement id, track id)
+  for (int kf : group_keyframes) {
+    if (kf < 0 || kf >= static_cast<int>(by_keyframe.size())) continue;
+    std::vector<mot::Detection> dets;
+    for (int id : by_keyframe[kf]) {
+      const ObjectMeasurement& m = measurements[id];
+      mot::Detection d;
+      d.box = m.box;
+      d.class_id = class_index(m.label, classes);
+      d.score = m.score;
+      d.embedding = m.embedding;
+      d.user_index = id;
+      dets.push_back(std::move(d));
+    }
+    const std::vector<int> tracks = tracker.update(dets);
+    for (size_t i = 0; i < dets.size(); ++i) out.emplace_back(dets[i].user_index, tracks[i]);
+  }
+  return out;
+}
+
+AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, const std::vector<std::vector<int>>& groups,
+                                    const SemanticOptions& options) {
+  const bool hdp_only = options.association.mode == "hdp-only";
+  AssociationResult r;
+  r.landmark_of.assign(ms.size(), -1);
+  r.track_of.assign(ms.size(), -1);
+  r.group_of.assign(ms.size(), -1);
+  int max_kf = -1;
+  for (const auto& m : ms) max_kf = std::max(max_kf, m.keyframe);
+  std::vector<std::vector<int>> by_keyframe(max_kf + 1);
+  for (const auto& m : ms) by_keyframe[m.keyframe].push_back(m.id);
+
+  // Level 1: group objects.
+  auto t0 = std::chrono::steady_clock::now();
+  std::vector<GroupObject> objects;
+  std::vector<std::vector<int>> items;  // per CRF group: object indices
+  if (hdp_only) {
+    for (int kf = 0; kf <= max_kf; ++kf) {
+      if (by_keyframe[kf].empty()) continue;
+      std::vector<int> g;
+      for (int id : by_keyframe[kf]) {
+        if (!ms[id].pose) continue;  // HDP-SLAM needs the measurement's pose
+        r.group_of[id] = static_cast<int>(items.size());
+        g.push_back(static_cast<int>(objects.size()));
+        objects.push_back(make_group_object(static_cast<int>(items.size()), {id}, ms));
+      }
+      if (!g.empty()) items.push_back(std::move(g));
+    }
+  } else {
+    for (size_t n = 0; n < groups.size(); ++n) {
+      std::map<int, std::vector<int>> tracks;
+      for (const auto& [id, track] : track_in_group(groups[n], by_keyframe, ms, options.tracker)) {
+        r.track_of[id] = track;
+        r.group_of[id] = static_cast<int>(n);
+        if (track >= 0) tracks[track].push_back(id);
+      }
+      std::vector<int> g;
+      for (const auto& [track, ids] : tracks)
+        for (const auto& segment : split_track_by_position(ids, ms, options.groups.split_distance)) {
+          GroupObject o = make_group_object(static_cast<int>(items.size()), segment, ms);
+          if (o.features.empty()) continue;  // no measurement could be placed
+          g.push_back(static_cast<int>(objects.size()));
+          objects.push_back(std::move(o));
+        }
+      items.push_back(std::move(g));  // may be empty: the sampler handles empty groups
+    }
+  }
+  r.mot_seconds = seconds_since(t0);
+  r.num_group_objects = static_cast<int>(objects.size());
+  r.num_groups = static_cast<int>(items.size());
+  if (objects.empty()) return r;
+
+  // Level 2: HDP across groups.
+  t0 = std::chrono::steady_clock::now();
+  AssociationModel model(objects, items, options.association);
+  std::vector<int> sizes;
+  for (const auto& g : items) sizes.push_back(static_cast<int>(g.size()));
+  hdp::CrfOptions crf = options.association.crf;
+  crf.cannot_link_within_group = true;  // distinct objects of one group are distinct landmarks
+  crf.resample_dishes = false;          // one item per table then: the dish step adds nothing
+  hdp::CrfSampler sampler(model, sizes, crf);
+  const hdp::CrfResult result = sampler.run();
+  r.hdp_seconds = seconds_since(t0);
+  t0 = std::chrono::steady_clock::now();
+
+  // Landmarks: every measurement takes the dish of its largest group object.
+  std::vector<std::vector<int>> dish_objects(result.num_dishes);
+  for (size_t j = 0; j < items.size(); ++j)
+    for (size_t i = 0; i < items[j].size(); ++i) dish_objects[result.dish[j][i]].push_back(items[j][i]);
+  std::vector<int> best_size(ms.size(), 0), dish_of(ms.size(), -1);
+  for (int k = 0; k < result.num_dishes; ++k)
+    for (int o : dish_objects[k])
+      for (int id : objects[o].measurements)
+        if (static_cast<int>(objects[o].measurements.size()) >= best_size[id]) {
+          best_size[id] = static_cast<int>(objects[o].measurements.size());
+          dish_of[id] = k;
+        }
+  std::vector<std::vector<int>> dish_measurements(result.num_dishes);
+  for (const auto& m : ms)
+    if (dish_of[m.id] >= 0) dish_measurements[dish_of[m.id]].push_back(m.id);
+
+  for (int k = 0; k < result.num_dishes; ++k) {
+    std::vector<int> ids;
+    std::vector<ObjectPose> poses;
+    for (int id : dish_measurements[k])
+      if (ms[id].pose) {
+        ids.push_back(id);
+        poses.push_back(*ms[id].pose);
+      }
+    if (static_cast<int>(dish_measurements[k].size()) < options.association.min_measurements || poses.empty()) continue;
+    ObjectLandmark l;
+    l.id = static_cast<int>(r.landmarks.size());
+    l.label = objects[dish_objects[k].front()].label;
+    l.measurements = dish_measurements[k];
+    // Assoc. Eq. 4-6, or HDP-SLAM's first measurement.
+    const int pick = hdp_only ? 0 : select_landmark_pose(poses, options.pose_selection);
+    l.pose_measurement = ids[pick];
+    l.pose = poses[pick];
+    for (int id : l.measurements) r.landmark_of[id] = l.id;
+    r.landmarks.push_back(std::move(l));
+  }
+  r.pose_selection_seconds = seconds_since(t0);
+  return r;
+}
+
+}  // namespace wardmap::semantics

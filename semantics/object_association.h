@@ -1,0 +1,46 @@
+// Hierarchical object association (Assoc. III-A): MOT inside each keyframe group gives group
+// objects; the HDP Gibbs sampler associates them across groups into landmarks; each landmark takes
+// the pose chosen by Eq. 4-6. The HDP-only baseline (HDP-SLAM) makes every keyframe its own group,
+// runs no MOT, and keeps each landmark's first measurement pose.
+#pragma once
+
+#include <vector>
+
+#include "semantics/association_model.h"
+#include "semantics/object_measurement.h"
+#include "semantics/options.h"
+
+namespace wardmap::semantics {
+
+struct ObjectLandmark {
+  int id = -1;
+  std::string label;
+  ObjectPose pose;
+  std::vector<int> measurements;  // ids
+  int pose_measurement = -1;      // the measurement whose pose the landmark took
+};
+
+struct AssociationResult {
+  std::vector<ObjectLandmark> landmarks;  // those with at least min_measurements, ids 0..n-1
+  std::vector<int> landmark_of;           // per measurement id: landmark id or -1 (dropped)
+  std::vector<int> track_of;              // per measurement id: MOT track id inside its group, or -1
+  std::vector<int> group_of;              // per measurement id: the (last) keyframe group holding it
+  int num_group_objects = 0;
+  int num_groups = 0;
+  double mot_seconds = 0, hdp_seconds = 0, pose_selection_seconds = 0;  // stage times
+};
+
+// MOT inside one keyframe group (Assoc. III-A.1): runs a fresh tracker over the group's keyframes
+// in order; returns for every measurement of those keyframes its track id (-1 when the tracker
+// dropped it). `by_keyframe[k]` lists the measurement ids of keyframe k.
+std::vector<std::pair<int, int>> track_in_group(const std::vector<int>& group_keyframes,
+                                                const std::vector<std::vector<int>>& by_keyframe,
+                                                const std::vector<ObjectMeasurement>& measurements,
+                                                const mot::TrackerOptions& options);
+
+// Runs the whole association over the measurements of all keyframes, grouped as `groups` (keyframe
+// indices; ignored in hdp-only mode, where every keyframe with measurements is its own group).
+AssociationResult associate_objects(const std::vector<ObjectMeasurement>& measurements,
+                                    const std::vector<std::vector<int>>& groups, const SemanticOptions& options);
+
+}  // namespace wardmap::semantics

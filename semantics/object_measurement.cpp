@@ -1,0 +1,184 @@
+#include "semantics/object_measurement.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+namespace wardmap::semantics {
+
+namespace {
+
+double percentile(std::vector<double>& v, double q) {
+  const size_t k = static_cast<size_t>(std::clamp(q, 0.0, 1.0) * (v.size() - 1));
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return v[k];
+}
+
+}  // namespace
+
+Eigen::Vector3d estimate_up(const std::vector<slam::SE3>& poses) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const auto& T : poses) sum -= T.rotation_matrix().col(1);
+  if (sum.norm() < 1e-9) return Eigen::Vector3d::UnitZ();
+  return sum.normalized();
+}
+
+Eigen::Matrix3d upright_rotation(const Eigen::Vector3d& up, const Eigen::Vector3d& axis) {
+  const Eigen::Vector3d z = up.normalized();
+  Eigen::Vector3d x = axis - axis.dot(z) * z;
+  if (x.norm() < 1e-9) x = z.unitOrthogonal();
+  x.normalize();
+  // A box is symmetric under a half turn: pick the sign deterministically (largest |component| > 0).
+  int k;
+  x.cwiseAbs().maxCoeff(&k);
+  if (x(k) < 0) x = -x;
+  Eigen::Matrix3d R;
+  R.col(0) = x;
+  R.col(1) = z.cross(x);
+  R.col(2) = z;
+  return R;
+}
+
+std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const slam::PinholeCamera& cam,
+                                                  const slam::SE3& T_wc, const Eigen::Vector4d& box,
+                                                  const Eigen::Vector3d& up, const std::string& label,
+                                                  const SemanticOptions& options,
+                                                  const std::vector<Eigen::Vector4d>& occluders) {
+  const MeasurementOptions& o = options.measurement;
+  if (depth.empty() || depth.type() != CV_32F) return std::nullopt;
+  const double w = box(2) - box(0), h = box(3) - box(1);
+  if (w < 4 || h < 4) return std::nullopt;
+  // Cut off by the image border: the visible part's centre is not the object's.
+  const double m = o.border_margin;
+  if (box(0) <= m || box(1) <= m || box(2) >= depth.cols - 1 - m || box(3) >= depth.rows - 1 - m) return std::nullopt;
+  const int x0 = std::max(0, static_cast<int>(std::floor(box(0) + o.box_shrink * w)));
+  const int x1 = std::min(depth.cols - 1, static_cast<int>(std::ceil(box(2) - o.box_shrink * w)));
+  const int y0 = std::max(0, static_cast<int>(std::floor(box(1) + o.box_shrink * h)));
+  const int y1 = std::min(depth.rows - 1, static_cast<int>(std::ceil(box(3) - o.box_shrink * h)));
+  const double area = static_cast<double>(x1 - x0 + 1) * (y1 - y0 + 1);
+  const int stride = std::max(1, static_cast<int>(std::sqrt(area / o.target_samples)));
+  std::vector<std::pair<double, Eigen::Vector3d>> samples;  // (depth, camera point)
+  for (int y = y0; y <= y1; y += stride) {
+    const float* row = depth.ptr<float>(y);
+    for (int x = x0; x <= x1; x += stride) {
+      const double z = row[x];
+      if (!(z >= o.min_depth && z <= o.max_depth)) continue;
+      bool hidden = false;
+      for (const auto& b : occluders) hidden = hidden || (x >= b(0) && x <= b(2) && y >= b(1) && y <= b(3));
+      if (hidden) continue;
+      samples.emplace_back(z, cam.unproject(Eigen::Vector2d(x, y)) * z);
+    }
+  }
+  if (static_cast<int>(samples.size()) < o.min_points) return std::nullopt;
+  // The object is the depth window, as deep as the object, that holds the most points: it owns the
+  // box (what lies behind it is wall or floor, what lies in front a partial occluder).
+  std::sort(samples.begin(), samples.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  double band = o.depth_band;
+  if (const auto it = options.class_sizes.find(label); it != options.class_sizes.end())
+    band = std::max(0.1, std::max(it->second[0], it->second[1]));
+  // Thin objects (a pole) own few of their box's pixels: take the nearest window with enough of them.
+  const bool thin = options.thin_classes.count(label) > 0;
+  const size_t need = std::max<size_t>(o.min_points, static_cast<size_t>((thin ? o.thin_support : o.cluster_support) *
+                                                                          samples.size()));
+  size_t begin = 0, end = 0;
+  for (size_t i = 0, j = 0; i < samples.size(); ++i) {
+    while (j < samples.size() && samples[j].first <= samples[i].first + band) ++j;
+    if (j - i > end - begin) begin = i, end = j;
+    if (thin && j - i >= need) break;
+  }
+  if (end - begin < need) return std::nullopt;
+  if (begin >= end) return std::nullopt;
+  std::vector<Eigen::Vector3d> world;
+  world.reserve(end - begin);
+  for (size_t i = begin; i < end; ++i) world.push_back(T_wc * samples[i].second);
+
+  // Principal horizontal axis.
+  const Eigen::Vector3d z = up.normalized();
+  const Eigen::Vector3d e1 = z.unitOrthogonal(), e2 = z.cross(e1);
+  Eigen::Vector2d mean2 = Eigen::Vector2d::Zero();
+  for (const auto& p : world) mean2 += Eigen::Vector2d(p.dot(e1), p.dot(e2));
+  mean2 /= world.size();
+  Eigen::Matrix2d C = Eigen::Matrix2d::Zero();
+  for (const auto& p : world) {
+    const Eigen::Vector2d d = Eigen::Vector2d(p.dot(e1), p.dot(e2)) - mean2;
+    C += d * d.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(C);
+  const Eigen::Vector2d major = eig.eigenvectors().col(1);
+  const Eigen::Matrix3d R = upright_rotation(z, major(0) * e1 + major(1) * e2);
+
+  // Extents along the object axes.
+  std::vector<double> ax[3];
+  for (const auto& p : world)
+    for (int k = 0; k < 3; ++k) ax[k].push_back(p.dot(R.col(k)));
+  Eigen::Vector3d lo, hi;
+  for (int k = 0; k < 3; ++k) lo(k) = percentile(ax[k], 0.05), hi(k) = percentile(ax[k], 0.95);
+  Eigen::Vector3d size = (hi - lo).cwiseMax(0.02);
+  Eigen::Vector3d centre = R * (0.5 * (lo + hi));
+
+  // Only the camera-facing surface is seen: complete the depth with the class's typical size.
+  if (o.complete_depth_with_class_size) {
+    const auto it = options.class_sizes.find(label);
+    if (it != options.class_sizes.end()) {
+      Eigen::Vector3d view = centre - T_wc.translation();
+      view -= view.dot(z) * z;
+      if (view.norm() > 1e-6) {
+        view.normalize();
+        // The horizontal object axis closer to the viewing direction is the hidden depth.
+        const int k = std::abs(view.dot(R.col(0))) > std::abs(view.dot(R.col(1))) ? 0 : 1;
+        // The class's horizontal size that is not the seen width is the hidden depth.
+        const double other_seen = size(1 - k);
+        const auto& cs = it->second;
+        const double expected = std::abs(other_seen - cs[0]) < std::abs(other_seen - cs[1]) ? cs[1] : cs[0];
+        if (expected > size(k)) {
+          const double sign = view.dot(R.col(k)) >= 0 ? 1.0 : -1.0;
+          centre += sign * 0.5 * (expected - size(k)) * R.col(k);
+          size(k) = expected;
+        }
+      }
+    }
+  }
+  return ObjectPose{slam::SE3(R, centre), size};
+}
+
+double box_median_depth(const cv::Mat& depth, const Eigen::Vector4d& box, const MeasurementOptions& o) {
+  if (depth.empty()) return 0;
+  const double w = box(2) - box(0), h = box(3) - box(1);
+  const int x0 = std::max(0, static_cast<int>(box(0) + o.box_shrink * w));
+  const int x1 = std::min(depth.cols - 1, static_cast<int>(box(2) - o.box_shrink * w));
+  const int y0 = std::max(0, static_cast<int>(box(1) + o.box_shrink * h));
+  const int y1 = std::min(depth.rows - 1, static_cast<int>(box(3) - o.box_shrink * h));
+  if (x1 < x0 || y1 < y0) return 0;
+  const int stride = std::max(1, static_cast<int>(std::sqrt((x1 - x0 + 1.0) * (y1 - y0 + 1.0) / o.target_samples)));
+  std::vector<double> zs;
+  for (int y = y0; y <= y1; y += stride)
+    for (int x = x0; x <= x1; x += stride) {
+      const double z = depth.at<float>(y, x);
+      if (z >= o.min_depth && z <= o.max_depth) zs.push_back(z);
+    }
+  return zs.empty() ? 0.0 : percentile(zs, 0.5);
+}
+
+std::vector<std::vector<Eigen::Vector4d>> nearer_overlapping_boxes(const cv::Mat& depth,
+                                                                   const std::vector<Eigen::Vector4d>& boxes,
+                                                                   const MeasurementOptions& o) {
+  std::vector<double> z(boxes.size());
+  for (size_t i = 0; i < boxes.size(); ++i) z[i] = box_median_depth(depth, boxes[i], o);
+  std::vector<std::vector<Eigen::Vector4d>> out(boxes.size());
+  for (size_t i = 0; i < boxes.size(); ++i)
+    for (size_t j = 0; j < boxes.size(); ++j) {
+      if (i == j) continue;
+      const auto& a = boxes[i];
+      const auto& b = boxes[j];
+      // Nearer: clearly less deep, or (objects standing on the floor, camera upright) its box reaches
+      // clearly lower in the image.
+      const bool nearer_by_depth = z[j] > 0 && z[i] > 0 && z[j] < z[i] - o.occluder_margin;
+      const bool nearer_by_footprint = b(3) > a(3) + o.occluder_footprint_px;
+      if (!nearer_by_depth && !nearer_by_footprint) continue;
+      if (std::min(a(2), b(2)) > std::max(a(0), b(0)) && std::min(a(3), b(3)) > std::max(a(1), b(1)))
+        out[i].push_back(b);
+    }
+  return out;
+}
+
+}  // namespace wardmap::semantics

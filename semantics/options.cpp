@@ -1,0 +1,96 @@
+#include "semantics/options.h"
+
+#include <sstream>
+
+#include "slam/core/errors.h"
+#include "slam/io/settings.h"
+
+namespace wardmap::semantics {
+
+namespace {
+
+struct RangeCheck {
+  std::ostringstream err;
+  void operator()(double v, double lo, double hi, const char* key) {
+    if (err.tellp() == 0 && !(v >= lo && v <= hi)) err << "key 'semantics." << key << "': must be in [" << lo << ", " << hi << "], got " << v;
+  }
+};
+
+}  // namespace
+
+std::optional<std::string> SemanticOptions::validate() const {
+  RangeCheck c;
+  c(keyframes.min_translation, 0, 10, "keyframes.min_translation");
+  c(keyframes.min_rotation_deg, 0, 180, "keyframes.min_rotation_deg");
+  c(keyframes.max_interval, 1, 10000, "keyframes.max_interval");
+  c(measurement.box_shrink, 0, 0.45, "measurement.box_shrink");
+  c(measurement.target_samples, 10, 1e6, "measurement.target_samples");
+  c(measurement.cluster_support, 0.01, 1, "measurement.cluster_support");
+  c(measurement.border_margin, 0, 1000, "measurement.border_margin");
+  c(measurement.occluder_margin, 0, 10, "measurement.occluder_margin");
+  c(measurement.occluder_footprint_px, 0, 10000, "measurement.occluder_footprint_px");
+  c(measurement.thin_support, 0.001, 1, "measurement.thin_support");
+  c(groups.split_distance, 0.01, 100, "groups.split_distance");
+  c(measurement.depth_band, 0.01, 10, "measurement.depth_band");
+  c(measurement.min_points, 3, 100000, "measurement.min_points");
+  c(measurement.min_depth, 0, measurement.max_depth, "measurement.min_depth");
+  c(groups.size, 1, 100, "groups.size");
+  c(groups.overlap, 0, groups.size - 1, "groups.overlap");
+  c(association.sigma_position, 1e-3, 10, "association.sigma_position");
+  c(association.sigma_rotation, 1e-3, 10, "association.sigma_rotation");
+  c(association.overlap_boost, 1, 100, "association.overlap_boost");
+  c(association.new_landmark_distance, 1e-3, 100, "association.new_landmark_distance");
+  c(association.appearance_weight, 0, 100, "association.appearance_weight");
+  c(association.appearance_neutral, -1, 1, "association.appearance_neutral");
+  c(association.min_measurements, 1, 10000, "association.min_measurements");
+  c(pose_selection.max_angle_deg, 1e-3, 180, "pose_selection.max_angle_deg");
+  c(pose_selection.max_distance, 1e-3, 100, "pose_selection.max_distance");
+  c(pose_selection.alpha, 0, 1, "pose_selection.alpha");
+  c(pose_selection.beta, 0, 1, "pose_selection.beta");
+  if (c.err.tellp() == 0 && association.mode != "hierarchical" && association.mode != "hdp-only")
+    c.err << "key 'semantics.association.mode': must be hierarchical or hdp-only, got '" << association.mode << "'";
+  if (c.err.tellp() != 0) return c.err.str();
+  if (auto e = association.crf.validate()) return "key 'semantics.association.crf': " + *e;
+  if (auto e = tracker.validate()) return "key 'semantics.tracker': " + *e;
+  return std::nullopt;
+}
+
+SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem::path& file) {
+  using slam::io::read_option;
+  SemanticOptions o;
+  if (!s) return o;
+  const auto kf = s["keyframes"], m = s["measurement"], g = s["groups"], a = s["association"], p = s["pose_selection"];
+  read_option(kf, "semantics.keyframes", "min_translation", o.keyframes.min_translation, file);
+  read_option(kf, "semantics.keyframes", "min_rotation_deg", o.keyframes.min_rotation_deg, file);
+  read_option(kf, "semantics.keyframes", "max_interval", o.keyframes.max_interval, file);
+  read_option(m, "semantics.measurement", "box_shrink", o.measurement.box_shrink, file);
+  read_option(m, "semantics.measurement", "target_samples", o.measurement.target_samples, file);
+  read_option(m, "semantics.measurement", "cluster_support", o.measurement.cluster_support, file);
+  read_option(m, "semantics.measurement", "border_margin", o.measurement.border_margin, file);
+  read_option(g, "semantics.groups", "split_distance", o.groups.split_distance, file);
+  read_option(m, "semantics.measurement", "depth_band", o.measurement.depth_band, file);
+  read_option(m, "semantics.measurement", "min_points", o.measurement.min_points, file);
+  read_option(m, "semantics.measurement", "complete_depth_with_class_size", o.measurement.complete_depth_with_class_size, file);
+  read_option(g, "semantics.groups", "size", o.groups.size, file);
+  read_option(g, "semantics.groups", "overlap", o.groups.overlap, file);
+  read_option(a, "semantics.association", "mode", o.association.mode, file);
+  read_option(a, "semantics.association", "sigma_position", o.association.sigma_position, file);
+  read_option(a, "semantics.association", "sigma_rotation", o.association.sigma_rotation, file);
+  read_option(a, "semantics.association", "overlap_boost", o.association.overlap_boost, file);
+  read_option(a, "semantics.association", "new_landmark_distance", o.association.new_landmark_distance, file);
+  read_option(a, "semantics.association", "appearance_weight", o.association.appearance_weight, file);
+  read_option(a, "semantics.association", "appearance_neutral", o.association.appearance_neutral, file);
+  read_option(a, "semantics.association", "min_measurements", o.association.min_measurements, file);
+  read_option(a, "semantics.association", "alpha", o.association.crf.alpha, file);
+  read_option(a, "semantics.association", "gamma", o.association.crf.gamma, file);
+  read_option(a, "semantics.association", "burn_in_sweeps", o.association.crf.burn_in_sweeps, file);
+  read_option(a, "semantics.association", "sweeps", o.association.crf.sweeps, file);
+  read_option(p, "semantics.pose_selection", "max_angle_deg", o.pose_selection.max_angle_deg, file);
+  read_option(p, "semantics.pose_selection", "max_distance", o.pose_selection.max_distance, file);
+  read_option(p, "semantics.pose_selection", "alpha", o.pose_selection.alpha, file);
+  read_option(p, "semantics.pose_selection", "beta", o.pose_selection.beta, file);
+  if (auto err = o.validate()) throw InputError(file.string(), *err);
+  return o;
+}
+
+}  // namespace wardmap::semantics

@@ -1,0 +1,100 @@
+// Options of the semantic layer (Assoc. paper), one struct per stage, defaults from the paper where
+// it gives them; loaded from the `semantics` section of a settings YAML and validated on load.
+#pragma once
+
+#include <filesystem>
+#include <array>
+#include <map>
+#include <set>
+#include <optional>
+#include <string>
+
+#include <yaml-cpp/yaml.h>
+
+#include "hdp/crf_sampler.h"
+#include "hdp/gaussian_mixture.h"
+#include "mot/tracker.h"
+
+namespace wardmap::semantics {
+
+// Keyframes taken from known poses (--poses gt): a new keyframe when the camera has moved or turned
+// enough since the last one, or after max_interval frames.
+struct KeyframeSelectionOptions {
+  double min_translation = 0.10;  // metres
+  double min_rotation_deg = 5.0;
+  int max_interval = 10;          // frames
+};
+
+// Object measurement from depth inside the detection box (Assoc. Eq. 1 "Pose").
+struct MeasurementOptions {
+  double box_shrink = 0.2;        // fraction of the box trimmed on each side (background at the edges)
+  int target_samples = 600;       // depth pixels sampled in the trimmed box (stride adapts to its size)
+  double depth_band = 0.6;        // surface depth window (m) for classes without a typical size
+  double cluster_support = 0.25;  // the fullest depth window must hold this share of the points
+  int min_points = 20;            // fewer valid points: no pose
+  int border_margin = 2;          // a box this close to the image border is cut off: no pose
+  double occluder_margin = 0.15;  // a detection this much nearer (m) than another hides its pixels,
+  double occluder_footprint_px = 8;  // or one whose box reaches this much lower in the image
+  double thin_support = 0.08;     // thin classes: share of the points the nearest window must hold
+  double min_depth = 0.2, max_depth = 10.0;
+  bool complete_depth_with_class_size = true;  // push the centre back when only a front face is seen
+};
+
+// Keyframe groups (Assoc. III-A.1): M adjacent keyframes, j shared with the next group. The paper
+// says M is "usually less than 10"; 6 keyframes (about 1-2 s of motion at our keyframe rate) keep
+// MOT inside a group reliable, and 2 overlapping keyframes give every group object a chance to share
+// measurements with the next group (the 1.5 prior boost).
+struct GroupOptions {
+  int size = 6;     // M
+  int overlap = 2;  // j
+  // A track whose measurements jump by more than this (m) from the track's position so far is
+  // split: image-space MOT can swap identical neighbours, their 3-D positions cannot.
+  double split_distance = 0.5;
+};
+
+// GMM prior + likelihood of the HDP association (Assoc. Eq. 2-3, III-A.2).
+struct AssociationOptions {
+  std::string mode = "hierarchical";  // hierarchical | hdp-only
+  double sigma_position = 0.25;       // m, GMM component std of each position coordinate
+  double sigma_rotation = 0.6;        // rad, GMM component std of each rotation-vector coordinate
+  double overlap_boost = 1.5;         // prior x1.5 when the item shares measurements with the landmark
+  double new_landmark_distance = 0.8; // m: a landmark this far away scores like a new one
+  double appearance_weight = 4.0;     // log-likelihood weight of the embedding cosine
+  double appearance_neutral = 0.6;    // cosine that neither favours nor penalises joining
+  hdp::CrfOptions crf;                // alpha, gamma, sweeps, seed
+  int min_measurements = 3;           // landmarks with fewer measurements are not reported
+};
+
+// Landmark pose selection (Assoc. Eq. 4-6). The paper does not give A and B.
+struct PoseSelectionOptions {
+  double max_angle_deg = 45.0;   // A
+  double max_distance = 1.0;     // B, metres
+  double alpha = 0.4;            // angle weight
+  double beta = 0.6;             // distance weight
+};
+
+struct SemanticOptions {
+  KeyframeSelectionOptions keyframes;
+  MeasurementOptions measurement;
+  GroupOptions groups;
+  mot::TrackerOptions tracker;
+  AssociationOptions association;
+  PoseSelectionOptions pose_selection;
+  // Typical sizes (x across, y front-back, z up; metres) of the landmark classes, used to complete
+  // a measurement that sees only the front of an object.
+  std::map<std::string, std::array<double, 3>> class_sizes = {
+      {"door", {0.9, 0.06, 2.05}}, {"chair", {0.5, 0.5, 0.9}},   {"bed", {0.95, 2.0, 0.6}},
+      {"cabinet", {0.45, 0.45, 0.8}}, {"wheelchair", {0.65, 1.0, 0.9}}, {"iv_pole", {0.5, 0.5, 1.8}}};
+
+  // Classes whose box is mostly background (measured on their nearest surface).
+  std::set<std::string> thin_classes = {"iv_pole"};
+
+  // Empty when valid, else the offending key and its allowed range.
+  std::optional<std::string> validate() const;
+};
+
+// Reads the `semantics` section of a settings file over the defaults; throws InputError naming the
+// file and the key.
+SemanticOptions load_semantic_options(const YAML::Node& section, const std::filesystem::path& file);
+
+}  // namespace wardmap::semantics

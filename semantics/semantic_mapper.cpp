@@ -1,0 +1,71 @@
+#include "semantics/semantic_mapper.h"
+
+#include <chrono>
+
+
+namespace wardmap::semantics {
+
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+SemanticMapper::SemanticMapper(const SemanticOptions& options, Detector& detector, EmbedFn embed,
+                               const slam::PinholeCamera& camera)
+    : options_(options), detector_(detector), embed_(std::move(embed)), camera_(camera) {}
+
+void SemanticMapper::add_keyframe(const KeyframeInput& kf) {
+  KeyframeRecord rec{static_cast<int>(keyframes_.size()), kf.timestamp, kf.T_wc};
+  keyframes_.push_back(rec);
+  Eigen::Vector3d up = up_.value_or(Eigen::Vector3d::UnitZ());
+  if (!up_) {
+    std::vector<slam::SE3> poses;
+    for (const auto& k : keyframes_) poses.push_back(k.T_wc);
+    up = estimate_up(poses);
+  }
+
+  auto t0 = std::chrono::steady_clock::now();
+  const std::vector<Detection> dets = detector_.detect(kf.image, kf.timestamp);
+  times_.detection.push_back(seconds_since(t0));
+
+  t0 = std::chrono::steady_clock::now();
+  std::vector<Eigen::VectorXf> embeddings(dets.size());
+  if (embed_)
+    for (size_t i = 0; i < dets.size(); ++i) embeddings[i] = embed_(kf.image, dets[i].box);
+  times_.embedding.push_back(seconds_since(t0));
+
+  t0 = std::chrono::steady_clock::now();
+  std::vector<Eigen::Vector4d> boxes;
+  for (const auto& d : dets) boxes.push_back(d.box);
+  const auto occluders = nearer_overlapping_boxes(kf.depth, boxes, options_.measurement);
+  for (size_t i = 0; i < dets.size(); ++i) {
+    ObjectMeasurement m;
+    m.id = static_cast<int>(measurements_.size());
+    m.keyframe = rec.index;
+    m.timestamp = kf.timestamp;
+    m.box = dets[i].box;
+    m.label = dets[i].label;
+    m.score = dets[i].score;
+    m.embedding = std::move(embeddings[i]);
+    m.gt_instance = dets[i].gt_instance;
+    if (!kf.depth.empty()) m.pose = measure_pose_from_depth(kf.depth, camera_, kf.T_wc, m.box, up, m.label, options_, occluders[i]);
+    measurements_.push_back(std::move(m));
+  }
+  times_.measurement.push_back(seconds_since(t0));
+}
+
+AssociationResult SemanticMapper::build_map() {
+  KeyframeGrouper grouper(options_.groups);
+  for (const auto& k : keyframes_) grouper.add_keyframe(k.index);
+  grouper.flush();
+  groups_.clear();
+  for (int n = 0; n < grouper.num_groups(); ++n) groups_.push_back(grouper.group(n));
+  AssociationResult r = associate_objects(measurements_, groups_, options_);
+  times_.mot = r.mot_seconds;
+  times_.hdp = r.hdp_seconds;
+  times_.pose_selection = r.pose_selection_seconds;
+  return r;
+}
+
+}  // namespace wardmap::semantics

@@ -1,0 +1,114 @@
+// Hierarchical association and the HDP-only baseline on measurements of identical neighbours with
+// known identities (no images: boxes, poses and embeddings made up).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "semantics/object_association.h"
+
+namespace wardmap::semantics {
+namespace {
+
+// Three identical doors 1.2 m apart seen in 40 keyframes while the camera passes: boxes slide left,
+// positions carry 4 cm noise, embeddings are identical (appearance cannot tell them apart).
+std::vector<ObjectMeasurement> passing_doors(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> n(0.0, 0.04);
+  std::vector<ObjectMeasurement> ms;
+  Eigen::VectorXf emb = Eigen::VectorXf::Ones(8).normalized();
+  for (int kf = 0; kf < 40; ++kf)
+    for (int d = 0; d < 3; ++d) {
+      const double u = 600 - 12.0 * kf + 150 * d;  // box centre slides with the camera
+      if (u < 40 || u > 600) continue;
+      ObjectMeasurement m;
+      m.id = static_cast<int>(ms.size());
+      m.keyframe = kf;
+      m.timestamp = kf * 0.3;
+      m.box = Eigen::Vector4d(u - 40, 100, u + 40, 380);
+      m.label = "door";
+      m.score = 0.9f;
+      m.embedding = emb;
+      m.gt_instance = d;
+      m.pose = ObjectPose{slam::SE3(Eigen::Quaterniond::Identity(), Eigen::Vector3d(1.2 * d + n(rng), 2 + n(rng), 1 + n(rng))),
+                          Eigen::Vector3d(0.9, 0.05, 2.0)};
+      ms.push_back(m);
+    }
+  return ms;
+}
+
+std::vector<std::vector<int>> groups_of(int keyframes, int M, int j) {
+  std::vector<std::vector<int>> g;
+  for (int s = 0; s + j < keyframes; s += M - j) {
+    std::vector<int> k;
+    for (int i = s; i < std::min(keyframes, s + M); ++i) k.push_back(i);
+    g.push_back(k);
+  }
+  return g;
+}
+
+// Share of measurements whose landmark's majority identity is their own.
+double accuracy(const std::vector<ObjectMeasurement>& ms, const AssociationResult& r) {
+  std::map<int, std::map<int, int>> votes;
+  for (const auto& m : ms)
+    if (r.landmark_of[m.id] >= 0) ++votes[r.landmark_of[m.id]][m.gt_instance];
+  int ok = 0, n = 0;
+  for (const auto& m : ms) {
+    if (r.landmark_of[m.id] < 0) continue;
+    const auto& v = votes[r.landmark_of[m.id]];
+    const int major = std::max_element(v.begin(), v.end(), [](auto& a, auto& b) { return a.second < b.second; })->first;
+    ok += major == m.gt_instance;
+    ++n;
+  }
+  return n ? static_cast<double>(ok) / n : 0.0;
+}
+
+TEST(Association, HierarchicalSeparatesIdenticalNeighbours) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const auto ms = passing_doors(seed);
+    SemanticOptions o;
+    o.association.crf.seed = seed;
+    const AssociationResult r = associate_objects(ms, groups_of(40, o.groups.size, o.groups.overlap), o);
+    EXPECT_EQ(r.landmarks.size(), 3u) << "seed " << seed;
+    EXPECT_DOUBLE_EQ(accuracy(ms, r), 1.0) << "seed " << seed;
+    for (const auto& l : r.landmarks) {
+      EXPECT_EQ(l.label, "door");
+      // Eq. 4-6 picks a measurement near the consensus: within 3 noise sigmas of the true door.
+      const int d = ms[l.pose_measurement].gt_instance;
+      EXPECT_LT((l.pose.pose.translation() - Eigen::Vector3d(1.2 * d, 2, 1)).norm(), 0.12);
+    }
+  }
+}
+
+TEST(Association, DeterministicForASeed) {
+  const auto ms = passing_doors(7);
+  SemanticOptions o;
+  const auto g = groups_of(40, o.groups.size, o.groups.overlap);
+  const AssociationResult a = associate_objects(ms, g, o), b = associate_objects(ms, g, o);
+  EXPECT_EQ(a.landmark_of, b.landmark_of);
+}
+
+TEST(Association, HdpOnlyBaselineKeepsFirstMeasurementPose) {
+  const auto ms = passing_doors(1);
+  SemanticOptions o;
+  o.association.mode = "hdp-only";
+  const AssociationResult r = associate_objects(ms, {}, o);
+  ASSERT_FALSE(r.landmarks.empty());
+  EXPECT_EQ(r.num_groups, 40);  // one group per keyframe
+  for (const auto& l : r.landmarks) {
+    EXPECT_EQ(l.pose_measurement, l.measurements.front());
+    EXPECT_EQ(r.track_of[l.measurements.front()], -1);  // no MOT
+  }
+}
+
+TEST(Association, ClassesNeverShareALandmark) {
+  auto ms = passing_doors(1);
+  for (auto& m : ms)
+    if (m.gt_instance == 1) m.label = "cabinet";  // same place scale, other class
+  SemanticOptions o;
+  const AssociationResult r = associate_objects(ms, groups_of(40, o.groups.size, o.groups.overlap), o);
+  for (const auto& l : r.landmarks)
+    for (int id : l.measurements) EXPECT_EQ(ms[id].label, l.label);
+}
+
+}  // namespace
+}  // namespace wardmap::semantics
