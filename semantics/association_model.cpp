@@ -84,7 +84,18 @@ double AssociationModel::log_predictive(const hdp::ItemRef& item, const std::vec
 double AssociationModel::log_predictive_new(const hdp::ItemRef&) const { return log_new_; }
 
 bool AssociationModel::cannot_link(const hdp::ItemRef& a, const hdp::ItemRef& b) const {
-  return object(a).label != object(b).label;
+  const GroupObject& x = object(a);
+  const GroupObject& y = object(b);
+  if (x.label != y.label) return true;
+  // Seen at once as different detections: sorted (keyframe, id) lists, walk both per keyframe.
+  auto i = x.keyframe_measurements.begin(), j = y.keyframe_measurements.begin();
+  while (i != x.keyframe_measurements.end() && j != y.keyframe_measurements.end()) {
+    if (i->first < j->first) ++i;
+    else if (j->first < i->first) ++j;
+    else if (i->second != j->second) return true;
+    else ++i, ++j;
+  }
+  return false;
 }
 
 }  // namespace wardmap::semantics

@@ -20,6 +20,7 @@ struct GroupObject {
   int group = -1;
   std::string label;
   std::vector<int> measurements;         // ids, sorted
+  std::vector<std::pair<int, int>> keyframe_measurements;  // (keyframe, measurement id), sorted
   std::vector<Eigen::VectorXd> features;  // 6-D pose features of the measurements with a pose
   Eigen::VectorXf embedding;              // normalised mean of the measurements' embeddings
 };
@@ -35,6 +36,8 @@ class AssociationModel : public hdp::CrfModel {
 
   double log_predictive(const hdp::ItemRef& item, const std::vector<hdp::ItemRef>& dish_members) const override;
   double log_predictive_new(const hdp::ItemRef& item) const override;
+  // Different classes, or different measurements in one keyframe (two detections at once are two
+  // objects).
   bool cannot_link(const hdp::ItemRef& a, const hdp::ItemRef& b) const override;
 
   // log of the prior term alone (max GMM probability, overlap boost) of `item` joining `member`.

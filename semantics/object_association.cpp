@@ -24,10 +24,12 @@ GroupObject make_group_object(int group, const std::vector<int>& ids, const std:
   std::map<std::string, int> votes;
   for (int id : o.measurements) {
     const auto& m = ms[id];
+    o.keyframe_measurements.emplace_back(m.keyframe, id);
     ++votes[m.label];
     if (m.pose) o.features.push_back(pose_feature(*m.pose));
     if (m.embedding.size() > 0) o.embedding = o.embedding.size() ? Eigen::VectorXf(o.embedding + m.embedding) : m.embedding;
   }
+  std::sort(o.keyframe_measurements.begin(), o.keyframe_measurements.end());
   o.label = std::max_element(votes.begin(), votes.end(), [](auto& a, auto& b) { return a.second < b.second; })->first;
   if (o.embedding.size() > 0 && o.embedding.norm() > 0) o.embedding.normalize();
   return o;
@@ -169,8 +171,9 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   std::vector<int> sizes;
   for (const auto& g : items) sizes.push_back(static_cast<int>(g.size()));
   hdp::CrfOptions crf = options.association.crf;
-  crf.cannot_link_within_group = true;  // distinct objects of one group are distinct landmarks
-  crf.resample_dishes = false;          // one item per table then: the dish step adds nothing
+  // Distinct landmarks are enforced where they are a fact (AssociationModel::cannot_link: two
+  // detections in one keyframe), not for every pair in a group: MOT may cut one track in two.
+  crf.cannot_link_within_group = false;
   hdp::CrfSampler sampler(model, sizes, crf);
   const hdp::CrfResult result = sampler.run();
   r.hdp_seconds = seconds_since(t0);
@@ -200,7 +203,9 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
         ids.push_back(id);
         poses.push_back(*ms[id].pose);
       }
-    if (static_cast<int>(dish_measurements[k].size()) < options.association.min_measurements || poses.empty()) continue;
+    if (static_cast<int>(dish_measurements[k].size()) < options.association.min_measurements ||
+        static_cast<int>(poses.size()) < options.association.min_placed_measurements || poses.empty())
+      continue;
     ObjectLandmark l;
     l.id = static_cast<int>(r.landmarks.size());
     l.label = objects[dish_objects[k].front()].label;

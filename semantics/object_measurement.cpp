@@ -114,6 +114,11 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   Eigen::Vector3d lo, hi;
   for (int k = 0; k < 3; ++k) lo(k) = percentile(ax[k], 0.05), hi(k) = percentile(ax[k], 0.95);
   Eigen::Vector3d size = (hi - lo).cwiseMax(0.02);
+  // Far larger than the class allows: the points are wall or floor, not the object.
+  if (const auto it = options.class_sizes.find(label); it != options.class_sizes.end()) {
+    const double largest = std::max({it->second[0], it->second[1], it->second[2]});
+    if (size.maxCoeff() > o.max_size_ratio * largest) return std::nullopt;
+  }
   Eigen::Vector3d centre = R * (0.5 * (lo + hi));
 
   // Only the camera-facing surface is seen: complete the depth with the class's typical size.

@@ -43,6 +43,8 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(association.appearance_weight, 0, 100, "association.appearance_weight");
   c(association.appearance_neutral, -1, 1, "association.appearance_neutral");
   c(association.min_measurements, 1, 10000, "association.min_measurements");
+  c(association.min_placed_measurements, 1, 10000, "association.min_placed_measurements");
+  c(measurement.max_size_ratio, 1, 100, "measurement.max_size_ratio");
   c(pose_selection.max_angle_deg, 1e-3, 180, "pose_selection.max_angle_deg");
   c(pose_selection.max_distance, 1e-3, 100, "pose_selection.max_distance");
   c(pose_selection.alpha, 0, 1, "pose_selection.alpha");
@@ -81,6 +83,8 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(a, "semantics.association", "appearance_weight", o.association.appearance_weight, file);
   read_option(a, "semantics.association", "appearance_neutral", o.association.appearance_neutral, file);
   read_option(a, "semantics.association", "min_measurements", o.association.min_measurements, file);
+  read_option(a, "semantics.association", "min_placed_measurements", o.association.min_placed_measurements, file);
+  read_option(m, "semantics.measurement", "max_size_ratio", o.measurement.max_size_ratio, file);
   read_option(a, "semantics.association", "alpha", o.association.crf.alpha, file);
   read_option(a, "semantics.association", "gamma", o.association.crf.gamma, file);
   read_option(a, "semantics.association", "burn_in_sweeps", o.association.crf.burn_in_sweeps, file);

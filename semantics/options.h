@@ -36,6 +36,7 @@ struct MeasurementOptions {
   double occluder_margin = 0.15;  // a detection this much nearer (m) than another hides its pixels,
   double occluder_footprint_px = 8;  // or one whose box reaches this much lower in the image
   double thin_support = 0.08;     // thin classes: share of the points the nearest window must hold
+  double max_size_ratio = 1.6;    // extents beyond this times the class's largest size: wall or floor, no pose
   double min_depth = 0.2, max_depth = 10.0;
   bool complete_depth_with_class_size = true;  // push the centre back when only a front face is seen
 };
@@ -56,13 +57,14 @@ struct GroupOptions {
 struct AssociationOptions {
   std::string mode = "hierarchical";  // hierarchical | hdp-only
   double sigma_position = 0.25;       // m, GMM component std of each position coordinate
-  double sigma_rotation = 0.6;        // rad, GMM component std of each rotation-vector coordinate
+  double sigma_rotation = 1.2;        // rad (wide: square footprints have no stable yaw), GMM component std of each rotation-vector coordinate
   double overlap_boost = 1.5;         // prior x1.5 when the item shares measurements with the landmark
   double new_landmark_distance = 0.8; // m: a landmark this far away scores like a new one
   double appearance_weight = 4.0;     // log-likelihood weight of the embedding cosine
   double appearance_neutral = 0.6;    // cosine that neither favours nor penalises joining
   hdp::CrfOptions crf;                // alpha, gamma, sweeps, seed
-  int min_measurements = 3;           // landmarks with fewer measurements are not reported
+  int min_measurements = 3;           // landmarks with fewer measurements are not reported,
+  int min_placed_measurements = 3;    // or with fewer measurements that have a pose
 };
 
 // Landmark pose selection (Assoc. Eq. 4-6). The paper does not give A and B.
@@ -87,7 +89,7 @@ struct SemanticOptions {
       {"cabinet", {0.45, 0.45, 0.8}}, {"wheelchair", {0.65, 1.0, 0.9}}, {"iv_pole", {0.5, 0.5, 1.8}}};
 
   // Classes whose box is mostly background (measured on their nearest surface).
-  std::set<std::string> thin_classes = {"iv_pole"};
+  std::set<std::string> thin_classes = {"iv_pole", "wheelchair"};
 
   // Empty when valid, else the offending key and its allowed range.
   std::optional<std::string> validate() const;
