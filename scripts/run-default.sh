@@ -1,19 +1,21 @@
 #!/usr/bin/env bash
-# The default job that scripts/setup.sh runs after building: describe the shared sequences and
-# evaluate their ground truth against itself (a smoke test of the readers and the evaluator).
-# It grows with the project: synthetic hospital sequence, then the SLAM run, then the object map.
+# The default job that scripts/setup.sh runs after building: render the synthetic hospital corridor
+# aisle_straight, map its objects on ground-truth poses, evaluate them; then describe the shared
+# real sequences when ../shared/data (or $WARDMAP_DATA) is there. Outputs in out/default/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 WARDMAP=build/apps/wardmap
 DATA=${WARDMAP_DATA:-../shared/data}
 OUT=${WARDMAP_OUT:-out/default}
 mkdir -p "$OUT"
+SEQ="$OUT/aisle_straight_slow_1"
+[ -f "$SEQ/objects.json" ] || $WARDMAP synth --scenario aisle_straight --variant slow --seed 1 --out "$SEQ"
+$WARDMAP info "$SEQ"
+$WARDMAP run "$SEQ" --poses gt --detector annotations --out "$OUT/run"
 if [ -d "$DATA/kitti-odometry-03" ]; then
   $WARDMAP info "$DATA/kitti-odometry-03"
-  $WARDMAP eval --gt "$DATA/kitti-odometry-03" --est "$DATA/kitti-odometry-03/poses/03.txt" \
-    --json "$OUT/kitti03-eval.json" --plot "$OUT/kitti03-eval.png"
 fi
 if [ -d "$DATA/7scenes-redkitchen" ]; then
   $WARDMAP info "$DATA/7scenes-redkitchen"
 fi
-echo "run-default.sh: outputs in $OUT"
+echo "run-default.sh: outputs in $OUT (run folder: $OUT/run, object map: $OUT/run/map.glb)"
