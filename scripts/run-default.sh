@@ -11,7 +11,10 @@ mkdir -p "$OUT"
 SEQ="$OUT/aisle_straight_slow_1"
 [ -f "$SEQ/objects.json" ] || $WARDMAP synth --scenario aisle_straight --variant slow --seed 1 --out "$SEQ"
 $WARDMAP info "$SEQ"
-$WARDMAP run "$SEQ" --poses gt --detector annotations --out "$OUT/run"
+EMB=()
+[ -f "${WARDMAP_MODELS:-../shared/models}/osnet-x0_25/osnet_x0_25_msmt17.onnx" ] ||
+  { echo "run-default.sh: OSNet weights not found: running without appearance embeddings"; EMB=(--no-embedding); }
+$WARDMAP run "$SEQ" --poses gt --detector annotations "${EMB[@]}" --out "$OUT/run"
 if [ -d "$DATA/kitti-odometry-03" ]; then
   $WARDMAP info "$DATA/kitti-odometry-03"
 fi
