@@ -105,23 +105,21 @@ void SequenceReader::finish_opening() {
   info_.has_depth = !entries_.front().depth.empty();
 }
 
-void SequenceReader::attach_ground_truth_by_time(double max_dt) {
-  const auto& ts = ground_truth_.timestamps;
-  if (ts.empty()) return;
-  for (Entry& e : entries_) {
-    auto it = std::lower_bound(ts.begin(), ts.end(), e.timestamp);
-    size_t best = ts.size();
-    double best_dt = max_dt;
-    for (auto c : {it, it == ts.begin() ? it : it - 1}) {
-      if (c == ts.end()) continue;
-      const double dt = std::abs(*c - e.timestamp);
-      if (dt <= best_dt) {
-        best_dt = dt;
-        best = static_cast<size_t>(c - ts.begin());
-      }
-    }
-    if (best < ts.size()) e.gt_pose = ground_truth_.poses[best];
+std::optional<size_t> nearest_within(const std::vector<double>& ts, double t, double max_dt) {
+  const auto it = std::lower_bound(ts.begin(), ts.end(), t);
+  std::optional<size_t> best;
+  double best_dt = max_dt;
+  for (auto c : {it, it == ts.begin() ? it : it - 1}) {
+    if (c == ts.end()) continue;
+    const double dt = std::abs(*c - t);
+    if (dt <= best_dt) best_dt = dt, best = static_cast<size_t>(c - ts.begin());
   }
+  return best;
+}
+
+void SequenceReader::attach_ground_truth_by_time(double max_dt) {
+  for (Entry& e : entries_)
+    if (const auto k = nearest_within(ground_truth_.timestamps, e.timestamp, max_dt)) e.gt_pose = ground_truth_.poses[*k];
 }
 
 static bool has_image_extension(const fs::path& p) {

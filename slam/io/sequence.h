@@ -103,6 +103,9 @@ std::unique_ptr<SequenceReader> open_seven_scenes(const std::filesystem::path& r
 std::unique_ptr<SequenceReader> open_image_folder(const std::filesystem::path& root, const ReaderOptions& o);
 std::unique_ptr<SequenceReader> open_video(const std::filesystem::path& file, const ReaderOptions& o);
 
+// Index of the value of `sorted` closest to t, when within max_dt (TUM's association rule).
+std::optional<size_t> nearest_within(const std::vector<double>& sorted, double t, double max_dt);
+
 // Shared by the readers: a readable image or an InputError naming it.
 cv::Mat load_image(const std::filesystem::path& file);
 // uint16 depth PNG to metres (0 = invalid); `invalid` raw values (e.g. 65535) are zeroed too.

@@ -45,6 +45,8 @@ class TumReader : public SequenceReader {
     const auto rgb = read_index(root, "rgb.txt");
     std::vector<TimedPath> depth;
     if (fs::exists(root / "depth.txt")) depth = read_index(root, "depth.txt");
+    std::vector<double> depth_times;
+    for (const auto& d : depth) depth_times.push_back(d.t);
     size_t dropped = 0;
     for (const auto& r : rgb) {
       Entry e;
@@ -53,22 +55,12 @@ class TumReader : public SequenceReader {
       e.listed_in = root / "rgb.txt";
       e.line = r.line;
       if (!depth.empty()) {
-        // Closest depth image in time, within max_dt (TUM's associate.py rule).
-        auto it = std::lower_bound(depth.begin(), depth.end(), r.t, [](const TimedPath& d, double t) { return d.t < t; });
-        const TimedPath* best = nullptr;
-        double best_dt = o.max_dt;
-        for (auto c : {it, it == depth.begin() ? it : it - 1}) {
-          if (c == depth.end()) continue;
-          if (std::abs(c->t - r.t) <= best_dt) {
-            best_dt = std::abs(c->t - r.t);
-            best = &*c;
-          }
-        }
-        if (!best) {
+        const auto k = nearest_within(depth_times, r.t, o.max_dt);
+        if (!k) {
           ++dropped;
           continue;
         }
-        e.depth = best->path;
+        e.depth = depth[*k].path;
       }
       entries_.push_back(std::move(e));
     }
