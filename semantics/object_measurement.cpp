@@ -121,7 +121,7 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   }
   Eigen::Vector3d centre = R * (0.5 * (lo + hi));
 
-  // Only the camera-facing surface is seen: complete the depth with the class's typical size.
+  // Only the camera-facing surface is seen: the depth comes from the class's typical size.
   if (o.complete_depth_with_class_size) {
     const auto it = options.class_sizes.find(label);
     if (it != options.class_sizes.end()) {
@@ -135,11 +135,12 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
         const double other_seen = size(1 - k);
         const auto& cs = it->second;
         const double expected = std::abs(other_seen - cs[0]) < std::abs(other_seen - cs[1]) ? cs[1] : cs[0];
-        if (expected > size(k)) {
-          const double sign = view.dot(R.col(k)) >= 0 ? 1.0 : -1.0;
-          centre += sign * 0.5 * (expected - size(k)) * R.col(k);
-          size(k) = expected;
-        }
+        // Anchor on the front surface (the extent end facing the camera): what lies behind it in the
+        // box may be the object's back or the wall it stands against.
+        const double sign = view.dot(R.col(k)) >= 0 ? 1.0 : -1.0;
+        const double front = sign > 0 ? lo(k) : hi(k);
+        centre += (front + sign * 0.5 * expected - centre.dot(R.col(k))) * R.col(k);
+        size(k) = expected;
       }
     }
   }
