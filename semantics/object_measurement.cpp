@@ -167,7 +167,8 @@ double box_median_depth(const cv::Mat& depth, const Eigen::Vector4d& box, const 
 
 std::vector<std::vector<Eigen::Vector4d>> nearer_overlapping_boxes(const cv::Mat& depth,
                                                                    const std::vector<Eigen::Vector4d>& boxes,
-                                                                   const MeasurementOptions& o) {
+                                                                   const MeasurementOptions& o,
+                                                                   const std::vector<bool>& supports) {
   std::vector<double> z(boxes.size());
   for (size_t i = 0; i < boxes.size(); ++i) z[i] = box_median_depth(depth, boxes[i], o);
   std::vector<std::vector<Eigen::Vector4d>> out(boxes.size());
@@ -181,6 +182,14 @@ std::vector<std::vector<Eigen::Vector4d>> nearer_overlapping_boxes(const cv::Mat
       const bool nearer_by_depth = z[j] > 0 && z[i] > 0 && z[j] < z[i] - o.occluder_margin;
       const bool nearer_by_footprint = b(3) > a(3) + o.occluder_footprint_px;
       if (!nearer_by_depth && !nearer_by_footprint) continue;
+      // A much larger box that holds most of mine is what I stand on or in front of (a cup on a
+      // table), not an occluder; a neighbour of my size in front of me is.
+      const double iw = std::min(a(2), b(2)) - std::max(a(0), b(0)), ih = std::min(a(3), b(3)) - std::max(a(1), b(1));
+      const double area_a = (a(2) - a(0)) * (a(3) - a(1)), area_b = (b(2) - b(0)) * (b(3) - b(1));
+      const bool support = j < supports.size() && supports[j];
+      if (support && !nearer_by_depth && iw > 0 && ih > 0 && area_a > 0 && iw * ih / area_a > o.support_containment &&
+          area_b > o.support_area_ratio * area_a)
+        continue;
       if (std::min(a(2), b(2)) > std::max(a(0), b(0)) && std::min(a(3), b(3)) > std::max(a(1), b(1)))
         out[i].push_back(b);
     }

@@ -51,9 +51,12 @@ double box_median_depth(const cv::Mat& depth, const Eigen::Vector4d& box, const 
 
 // For each box, the boxes of nearer detections overlapping it (Assoc. Eq. 1 measurements of one
 // keyframe, measured front to back).
+// `supports[i]` tells that detection i is of a class things stand on (a table): a much larger
+// support box holding most of a box is not its occluder.
 std::vector<std::vector<Eigen::Vector4d>> nearer_overlapping_boxes(const cv::Mat& depth,
                                                                    const std::vector<Eigen::Vector4d>& boxes,
-                                                                   const MeasurementOptions& options);
+                                                                   const MeasurementOptions& options,
+                                                                   const std::vector<bool>& supports = {});
 
 // The world's up direction from camera poses: the mean of their -y axes (cameras are held roughly
 // upright), normalised.

@@ -35,6 +35,8 @@ struct MeasurementOptions {
   int border_margin = 2;          // a box this close to the image border is cut off: no pose
   double occluder_margin = 0.15;  // a detection this much nearer (m) than another hides its pixels,
   double occluder_footprint_px = 8;  // or one whose box reaches this much lower in the image
+  double support_containment = 0.8;  // a box holding this share of mine, and
+  double support_area_ratio = 4.0;   // this many times larger, is a support, not an occluder
   double thin_support = 0.08;     // thin classes: share of the points the nearest window must hold
   double max_size_ratio = 1.6;    // extents beyond this times the class's largest size: wall or floor, no pose
   double min_depth = 0.2, max_depth = 10.0;
@@ -90,6 +92,8 @@ struct SemanticOptions {
 
   // Classes whose box is mostly background (measured on their nearest surface).
   std::set<std::string> thin_classes = {"iv_pole", "wheelchair"};
+  // Classes other objects stand on (their boxes hold the boxes of what is on them).
+  std::set<std::string> support_classes = {"table", "bed", "desk", "counter", "bench"};
 
   // Empty when valid, else the offending key and its allowed range.
   std::optional<std::string> validate() const;

@@ -37,8 +37,12 @@ void SemanticMapper::add_keyframe(const KeyframeInput& kf) {
 
   t0 = std::chrono::steady_clock::now();
   std::vector<Eigen::Vector4d> boxes;
-  for (const auto& d : dets) boxes.push_back(d.box);
-  const auto occluders = nearer_overlapping_boxes(kf.depth, boxes, options_.measurement);
+  std::vector<bool> supports;
+  for (const auto& d : dets) {
+    boxes.push_back(d.box);
+    supports.push_back(options_.support_classes.count(d.label) > 0);
+  }
+  const auto occluders = nearer_overlapping_boxes(kf.depth, boxes, options_.measurement, supports);
   for (size_t i = 0; i < dets.size(); ++i) {
     ObjectMeasurement m;
     m.id = static_cast<int>(measurements_.size());
