@@ -44,13 +44,15 @@ else
 fi
 
 # The glTF validator (npm package gltf-validator, tests/tools/package.json), installed as the
-# invoking user into tests/tools/node_modules.
+# invoking user into tests/tools/node_modules. Optional: without it the validator test skips and says
+# so (e.g. behind a proxy npm does not trust).
 if [ -d tests/tools/node_modules/gltf-validator ]; then
   echo "setup.sh: glTF validator present"
 else
   echo "setup.sh: installing the glTF validator (npm) into tests/tools"
   npm install --prefix tests/tools --no-audit --no-fund ||
-    { echo "setup.sh: 'npm install --prefix tests/tools' failed (is the npm registry reachable?)" >&2; exit 1; }
+    echo "setup.sh: warning: 'npm install --prefix tests/tools' failed (is the npm registry reachable?);" \
+      "the glTF validator test will be skipped" >&2
 fi
 
 [ "$DEPS_ONLY" -eq 1 ] && exit 0
