@@ -1,0 +1,28 @@
+// A grid over the (undistorted) image holding keypoint indices, for radius searches during matching.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace wardmap::slam {
+
+class FeatureGrid {
+ public:
+  FeatureGrid() = default;
+  // `points`: undistorted pixels; `levels`: pyramid level of each point.
+  FeatureGrid(const std::vector<Eigen::Vector2d>& points, const std::vector<int>& levels, int width, int height,
+              int cell_size = 20);
+  // Indices of the points within `radius` (L-inf) of (x, y) whose level is in [min_level, max_level]
+  // (max_level < 0: no upper bound).
+  std::vector<int> in_area(double x, double y, double radius, int min_level = 0, int max_level = -1) const;
+
+ private:
+  const std::vector<int>& cell(int cx, int cy) const { return cells_[static_cast<size_t>(cy * cols_ + cx)]; }
+  int cols_ = 0, rows_ = 0;
+  double cell_ = 20;
+  std::vector<std::vector<int>> cells_;
+  std::vector<Eigen::Vector2d> points_;
+  std::vector<int> levels_;
+};
+
+}  // namespace wardmap::slam

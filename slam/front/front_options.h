@@ -1,0 +1,84 @@
+// Options of the realtime front-process (ORB features, matching, tracking, local mapping), loaded from
+// a settings YAML: ORB-SLAM3's `ORBextractor.*` keys plus wardmap's `tracking:` and `mapping:` sections.
+#pragma once
+
+#include <filesystem>
+
+#include "slam/io/settings.h"
+
+namespace wardmap::slam {
+
+struct OrbOptions {
+  int n_features = 1000;      // ORBextractor.nFeatures
+  double scale_factor = 1.2;  // ORBextractor.scaleFactor
+  int n_levels = 8;           // ORBextractor.nLevels
+  int ini_th_fast = 20;       // ORBextractor.iniThFAST
+  int min_th_fast = 7;        // ORBextractor.minThFAST
+  int cell_size = 30;         // tracking.fast_cell_size: FAST threshold fallback cell (pixels)
+  int edge_threshold = 19;    // tracking.orb_edge_threshold: keypoints keep this far from the border
+};
+
+struct MatcherOptions {
+  int th_low = 50;                // tracking.match_th_low: Hamming distance for strict matches
+  int th_high = 100;              // tracking.match_th_high: Hamming distance for projection matches
+  double ratio_projection = 0.8;  // tracking.match_ratio_projection: best / second best (same level)
+  double ratio_knn = 0.75;        // tracking.match_ratio_knn: Lowe ratio for brute-force bootstrapping
+  bool check_orientation = true;  // tracking.match_check_orientation: rotation-consistency histogram
+  int histogram_bins = 30;        // tracking.match_histogram_bins
+};
+
+struct TrackingOptions {
+  double virtual_baseline = 0.08;      // tracking.virtual_baseline (m), else Stereo.b: depth as a disparity
+  double close_depth = 3.0;            // tracking.close_depth (m), else Stereo.b x Stereo.ThDepth
+  double max_depth = 5.0;              // tracking.max_depth (m): larger depths are ignored
+  double max_depth_step = 0.05;        // tracking.max_depth_step: relative depth jump marking a silhouette
+  int min_init_points = 300;           // tracking.min_init_points: keypoints with depth to initialise
+  double motion_radius = 7.0;          // tracking.motion_radius (px at level 0): constant-velocity search
+  double local_map_radius = 3.0;       // tracking.local_map_radius (px at level 0): local-map search
+  int min_motion_matches = 20;         // tracking.min_motion_matches
+  int min_pose_inliers = 10;           // tracking.min_pose_inliers: after motion / reference tracking
+  int min_local_map_inliers = 30;      // tracking.min_local_map_inliers: a frame counts as tracked
+  double short_term_seconds = 2.0;     // tracking.short_term_seconds: RUMI Formula 5 Th_t
+  double mid_term_distance = 4.0;      // tracking.mid_term_distance (m): RUMI Formula 5 Th_p
+  int max_local_keyframes = 80;        // tracking.max_local_keyframes
+  int pose_rounds = 4;                 // tracking.pose_rounds: optimise / reject outliers rounds
+  int pose_iterations = 10;            // tracking.pose_iterations: solver iterations per round
+  double chi2_mono = 5.991;            // tracking.chi2_mono: 95 % of chi2 with 2 dof
+  double chi2_stereo = 7.815;          // tracking.chi2_stereo: 95 % of chi2 with 3 dof
+  int keyframe_max_frames = 10;        // tracking.keyframe_max_frames: insert at least this often
+  double keyframe_ref_ratio = 0.75;    // tracking.keyframe_ref_ratio: tracked / reference-keyframe points
+  int keyframe_close_tracked = 100;    // tracking.keyframe_close_tracked
+  int keyframe_close_untracked = 100;  // tracking.keyframe_close_untracked
+  int min_depth_points = 100;          // tracking.min_depth_points: new close points per keyframe
+  int lost_frames_to_reset = 15;       // tracking.lost_frames_to_reset: lost this long, start a new submap
+};
+
+struct MappingOptions {
+  int queue_capacity = 8;            // mapping.queue_capacity: keyframes waiting for the mapper
+  int triangulation_neighbours = 5;  // mapping.triangulation_neighbours
+  int fuse_neighbours = 10;          // mapping.fuse_neighbours
+  double min_parallax_deg = 1.0;     // mapping.min_parallax_deg: triangulation parallax
+  double recent_found_ratio = 0.25;  // mapping.recent_found_ratio: culling of new points
+  int recent_min_observations = 3;   // mapping.recent_min_observations
+  int ba_iterations_robust = 5;      // mapping.ba_iterations_robust
+  int ba_iterations_refine = 10;     // mapping.ba_iterations_refine
+  int ba_max_keyframes = 10;         // mapping.ba_max_keyframes: covisible keyframes optimised
+  int ba_max_fixed_keyframes = 10;   // mapping.ba_max_fixed_keyframes: other observers held fixed
+  double redundant_ratio = 0.9;      // mapping.redundant_ratio: keyframe culling
+  int redundant_observers = 3;       // mapping.redundant_observers
+  bool keyframe_culling = true;      // mapping.keyframe_culling
+};
+
+struct FrontOptions {
+  OrbOptions orb;
+  MatcherOptions matcher;
+  TrackingOptions tracking;
+  MappingOptions mapping;
+  // Throws InputError naming the key and the allowed range; `file` names the settings file.
+  void validate(const std::filesystem::path& file = "<front options>") const;
+};
+
+// Reads the keys present in the settings (others keep their defaults), then validates.
+FrontOptions load_front_options(const io::Settings& settings);
+
+}  // namespace wardmap::slam

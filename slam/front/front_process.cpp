@@ -1,0 +1,91 @@
+#include "slam/front/front_process.h"
+
+#include <algorithm>
+#include <chrono>
+
+namespace wardmap::slam {
+
+FrontProcess::FrontProcess(const FrontOptions& options, const PinholeCamera& camera)
+    : options_(options),
+      camera_(camera),
+      extractor_(options.orb),
+      ids_(std::make_shared<IdSource>()),
+      submap_(std::make_shared<Submap>(0, ids_)),
+      mapper_(options, camera),
+      tracker_(options, camera, mapper_) {
+  options_.validate();
+  submaps_.push_back(submap_);
+  mapper_.set_submap(submap_);
+  tracker_.set_submap(submap_);
+}
+
+FrontProcess::~FrontProcess() = default;
+
+FrameResult FrontProcess::process(const io::Frame& in) {
+  const auto start = std::chrono::steady_clock::now();
+  Frame frame(next_frame_id_++, in.timestamp,
+              make_frame_features(in.image, in.depth, extractor_, camera_, options_.tracking.virtual_baseline,
+                                  options_.tracking.max_depth, options_.tracking.max_depth_step));
+  const auto extracted = std::chrono::steady_clock::now();
+  const LocalMapperStats& ms = mapper_.stats();
+  const double mapping_before =
+      ms.t_register + ms.t_cull + ms.t_triangulate + ms.t_fuse + ms.t_ba + ms.t_cull_keyframes;
+  const TrackingOutcome t = tracker_.track(frame);
+  FrameResult r;
+  r.extract_seconds = std::chrono::duration<double>(extracted - start).count();
+  r.mapping_seconds =
+      ms.t_register + ms.t_cull + ms.t_triangulate + ms.t_fuse + ms.t_ba + ms.t_cull_keyframes - mapping_before;
+  r.index = in.index;
+  r.timestamp = in.timestamp;
+  r.state = t.state;
+  r.tracked = t.tracked;
+  r.keyframe = t.keyframe;
+  r.features = static_cast<int>(frame.size());
+  r.matches = t.matches;
+  r.inliers = t.inliers;
+  r.submap = submap_->id();
+  if (t.tracked) {
+    r.T_wc = frame.pose_cw().inverse();
+    last_tracked_pose_cw_ = frame.pose_cw();
+    if (t.reference)
+      records_.push_back({in.timestamp, submap_->id(), t.reference, frame.pose_cw() * t.reference->pose_wc()});
+  } else if (t.state == TrackingState::kLost && tracker_.frames_lost() >= options_.tracking.lost_frames_to_reset) {
+    submap_ = std::make_shared<Submap>(static_cast<int>(submaps_.size()), ids_);
+    submaps_.push_back(submap_);
+    mapper_.set_submap(submap_);
+    tracker_.set_submap(submap_, last_tracked_pose_cw_);
+    r.new_submap = true;
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+SE3 resolved_pose_cw(const std::shared_ptr<KeyFrame>& kf) {
+  SE3 T;  // accumulated T_{kf, current}
+  std::shared_ptr<KeyFrame> k = kf;
+  for (int guard = 0; k && k->bad() && guard < 10000; ++guard) {
+    T = T * k->pose_relative_to_parent();
+    k = k->parent();
+  }
+  return k ? T * k->pose_cw() : T;
+}
+
+Trajectory FrontProcess::trajectory() const {
+  std::vector<size_t> frames(submaps_.size(), 0);
+  for (const Record& r : records_) ++frames[static_cast<size_t>(r.submap)];
+  const auto largest = std::max_element(frames.begin(), frames.end()) - frames.begin();
+  return trajectory(static_cast<int>(largest));
+}
+
+Trajectory FrontProcess::trajectory(int submap_id) const {
+  Trajectory traj;
+  for (const Record& r : records_) {
+    if (r.submap != submap_id) continue;
+    const SE3 T_cw = r.T_cr * resolved_pose_cw(r.reference);
+    if (!traj.timestamps.empty() && r.timestamp <= traj.timestamps.back()) continue;
+    traj.push_back(r.timestamp, T_cw.inverse());
+  }
+  return traj;
+}
+
+}  // namespace wardmap::slam

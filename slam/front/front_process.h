@@ -1,0 +1,83 @@
+// The realtime front-process as one object: feed it frames, get each frame's status and pose, and the
+// trajectory of the tracked frames at any time (poses are kept relative to their reference keyframe,
+// so bundle-adjustment corrections reach them). The entry point for `wardmap run`.
+// When tracking stays lost for tracking.lost_frames_to_reset frames (no relocalisation yet), a new
+// submap is started, seeded at the last tracked pose; the old submaps are kept for a later merge.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "slam/core/camera.h"
+#include "slam/core/trajectory.h"
+#include "slam/front/front_options.h"
+#include "slam/front/local_mapper.h"
+#include "slam/front/orb_extractor.h"
+#include "slam/front/submap.h"
+#include "slam/front/tracker.h"
+#include "slam/io/sequence.h"
+
+namespace wardmap::slam {
+
+struct FrameResult {
+  size_t index = 0;
+  double timestamp = 0;
+  TrackingState state = TrackingState::kNotInitialised;
+  bool tracked = false;
+  bool keyframe = false;
+  SE3 T_wc;  // camera-to-world at the time of tracking (meaningful when tracked)
+  int features = 0;
+  int matches = 0;
+  int inliers = 0;
+  int submap = 0;              // id of the submap the frame was tracked in
+  bool new_submap = false;     // tracking was lost too long: a new submap starts with the next frame
+  double seconds = 0;          // wall time spent on this frame (extraction, tracking, inline mapping)
+  double extract_seconds = 0;  // of which ORB extraction
+  double mapping_seconds = 0;  // of which local mapping run inline (keyframes only)
+};
+
+class FrontProcess {
+ public:
+  FrontProcess(const FrontOptions& options, const PinholeCamera& camera);
+  ~FrontProcess();
+  FrontProcess(const FrontProcess&) = delete;
+  FrontProcess& operator=(const FrontProcess&) = delete;
+
+  // Tracks one frame (grey or BGR image, CV_32F depth in metres).
+  FrameResult process(const io::Frame& frame);
+  // Camera-to-world poses of the frames tracked in the submap holding most frames (the whole run
+  // when it never lost track), with the current keyframe poses.
+  Trajectory trajectory() const;
+  // The same for one submap.
+  Trajectory trajectory(int submap_id) const;
+  // The active submap, and every submap built so far (oldest first).
+  const Submap& submap() const { return *submap_; }
+  const std::vector<std::shared_ptr<Submap>>& submaps() const { return submaps_; }
+  const LocalMapperStats& mapper_stats() const { return mapper_.stats(); }
+  TrackingState state() const { return tracker_.state(); }
+
+ private:
+  struct Record {
+    double timestamp;
+    int submap;
+    std::shared_ptr<KeyFrame> reference;
+    SE3 T_cr;  // frame pose relative to its reference keyframe
+  };
+
+  FrontOptions options_;
+  PinholeCamera camera_;
+  OrbExtractor extractor_;
+  std::shared_ptr<IdSource> ids_;
+  std::shared_ptr<Submap> submap_;
+  std::vector<std::shared_ptr<Submap>> submaps_;
+  LocalMapper mapper_;
+  Tracker tracker_;
+  std::vector<Record> records_;
+  std::uint64_t next_frame_id_ = 0;
+  SE3 last_tracked_pose_cw_;
+};
+
+// Pose of keyframe kf (world-to-camera), following the parents of culled keyframes.
+SE3 resolved_pose_cw(const std::shared_ptr<KeyFrame>& kf);
+
+}  // namespace wardmap::slam

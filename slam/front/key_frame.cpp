@@ -1,0 +1,102 @@
+#include "slam/front/key_frame.h"
+
+#include <algorithm>
+
+namespace wardmap::slam {
+
+KeyFrame::KeyFrame(KeyFrameId id, const Frame& frame)
+    : id_(id),
+      frame_id_(frame.id()),
+      timestamp_(frame.timestamp()),
+      features_(frame.shared_features()),
+      map_points_(frame.map_points) {
+  set_pose_cw(frame.pose_cw());
+  for (size_t i = 0; i < map_points_.size(); ++i)
+    if (map_points_[i] && (map_points_[i]->bad() || frame.outlier[i])) map_points_[i].reset();
+}
+
+int KeyFrame::tracked_points(int min_observations) const {
+  int n = 0;
+  for (const auto& mp : map_points_)
+    if (mp && !mp->bad() && mp->num_observations() >= min_observations) ++n;
+  return n;
+}
+
+void KeyFrame::add_connection(const std::shared_ptr<KeyFrame>& kf, int weight) {
+  connections_[kf->id()] = Connection{kf, weight};
+}
+
+void KeyFrame::erase_connection(KeyFrameId id) { connections_.erase(id); }
+
+int KeyFrame::weight(KeyFrameId id) const {
+  auto it = connections_.find(id);
+  return it == connections_.end() ? 0 : it->second.weight;
+}
+
+void KeyFrame::update_connections(int min_weight) {
+  std::map<KeyFrameId, std::pair<std::shared_ptr<KeyFrame>, int>> counts;
+  for (const auto& mp : map_points_) {
+    if (!mp || mp->bad()) continue;
+    for (const auto& [id, obs] : mp->observations()) {
+      if (id == id_) continue;
+      auto kf = obs.keyframe.lock();
+      if (!kf || kf->bad()) continue;
+      auto& c = counts[id];
+      c.first = kf;
+      ++c.second;
+    }
+  }
+  for (auto& [id, c] : connections_)
+    if (auto kf = c.keyframe.lock(); kf && !counts.count(id)) kf->erase_connection(id_);
+  connections_.clear();
+  if (counts.empty()) return;
+  auto self = shared_from_this();
+  std::shared_ptr<KeyFrame> best;
+  int best_w = 0;
+  for (auto& [id, c] : counts) {
+    if (c.second > best_w) {
+      best_w = c.second;
+      best = c.first;
+    }
+    if (c.second >= min_weight) {
+      connections_[id] = Connection{c.first, c.second};
+      c.first->add_connection(self, c.second);
+    }
+  }
+  if (connections_.empty()) {
+    connections_[best->id()] = Connection{best, best_w};
+    best->add_connection(self, best_w);
+  }
+  if (!parent_.lock() && best && best->id() < id_) parent_ = best;
+}
+
+std::vector<std::shared_ptr<KeyFrame>> KeyFrame::best_covisibles(int n) const {
+  std::vector<std::pair<int, std::shared_ptr<KeyFrame>>> v;
+  for (const auto& [id, c] : connections_)
+    if (auto kf = c.keyframe.lock(); kf && !kf->bad()) v.emplace_back(c.weight, kf);
+  std::stable_sort(v.begin(), v.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second->id() < b.second->id();
+  });
+  std::vector<std::shared_ptr<KeyFrame>> out;
+  for (auto& [w, kf] : v) {
+    if (n > 0 && static_cast<int>(out.size()) >= n) break;
+    out.push_back(kf);
+  }
+  return out;
+}
+
+void KeyFrame::set_bad(const std::shared_ptr<KeyFrame>& new_parent) {
+  for (auto& [id, c] : connections_)
+    if (auto kf = c.keyframe.lock()) kf->erase_connection(id_);
+  connections_.clear();
+  for (size_t i = 0; i < map_points_.size(); ++i)
+    if (map_points_[i]) {
+      map_points_[i]->erase_observation(id_);
+      map_points_[i].reset();
+    }
+  parent_ = new_parent;
+  if (new_parent) T_cp_ = T_cw_ * new_parent->pose_wc();
+  bad_ = true;
+}
+
+}  // namespace wardmap::slam

@@ -1,0 +1,22 @@
+// When the tracker inserts a keyframe (ORB-SLAM's NeedNewKeyFrame for RGB-D): often enough, when
+// the frame tracks clearly fewer points than its reference keyframe holds, or when too few close
+// points are tracked while many close keypoints are unmatched; and always after keyframe_max_frames.
+#pragma once
+
+#include "slam/front/front_options.h"
+
+namespace wardmap::slam {
+
+struct KeyFrameEvidence {
+  int frames_since_keyframe = 0;
+  int tracked_inliers = 0;   // frame's matched inliers after local-map tracking
+  int reference_points = 0;  // reference keyframe's points with enough observations
+  int keyframes_in_map = 0;
+  int tracked_close = 0;    // close keypoints with a matched point
+  int untracked_close = 0;  // close keypoints without one
+  bool mapper_idle = true;
+};
+
+bool need_new_keyframe(const KeyFrameEvidence& e, const TrackingOptions& options);
+
+}  // namespace wardmap::slam

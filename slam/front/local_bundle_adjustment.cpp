@@ -1,0 +1,185 @@
+#include "slam/front/local_bundle_adjustment.h"
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "slam/front/pose_optimizer.h"
+#include "slam/front/reprojection_costs.h"
+#include "slam/front/submap.h"
+
+namespace wardmap::slam {
+
+namespace {
+
+struct BAObservation {
+  KeyFrame* keyframe;
+  MapPoint* point;
+  int index;
+};
+
+}  // namespace
+
+LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe, Submap& submap,
+                                      const PinholeCamera& camera, const FrontOptions& options) {
+  LocalBAResult result;
+  const MappingOptions& m = options.mapping;
+  // Local keyframes and points.
+  std::vector<std::shared_ptr<KeyFrame>> local = keyframe->best_covisibles(m.ba_max_keyframes - 1);
+  local.insert(local.begin(), keyframe);
+  std::unordered_set<KeyFrameId> local_ids;
+  for (const auto& kf : local) local_ids.insert(kf->id());
+  std::vector<std::shared_ptr<MapPoint>> points;
+  std::unordered_set<MapPointId> point_ids;
+  for (const auto& kf : local)
+    for (const auto& mp : kf->map_points())
+      if (mp && !mp->bad() && point_ids.insert(mp->id()).second) points.push_back(mp);
+  // Fixed keyframes: the others that see local points, those sharing most points first.
+  std::map<KeyFrameId, std::pair<std::shared_ptr<KeyFrame>, int>> others;
+  for (const auto& mp : points)
+    for (const auto& [id, obs] : mp->observations())
+      if (!local_ids.count(id))
+        if (auto kf = obs.keyframe.lock(); kf && !kf->bad()) {
+          auto& o = others[id];
+          o.first = kf;
+          ++o.second;
+        }
+  std::vector<std::pair<int, std::shared_ptr<KeyFrame>>> ranked;
+  for (auto& [id, o] : others) ranked.emplace_back(o.second, o.first);
+  std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::map<KeyFrameId, std::shared_ptr<KeyFrame>> fixed;
+  for (const auto& [n, kf] : ranked) {
+    if (static_cast<int>(fixed.size()) >= m.ba_max_fixed_keyframes) break;
+    fixed[kf->id()] = kf;
+  }
+
+  std::map<KeyFrameId, std::array<double, 7>> poses;  // qx qy qz qw tx ty tz
+  auto add_pose = [&](const std::shared_ptr<KeyFrame>& kf) {
+    const Eigen::Quaterniond q = kf->pose_cw().rotation().normalized();
+    const Eigen::Vector3d& t = kf->pose_cw().translation();
+    poses[kf->id()] = {q.x(), q.y(), q.z(), q.w(), t.x(), t.y(), t.z()};
+  };
+  for (const auto& kf : local) add_pose(kf);
+  for (const auto& [id, kf] : fixed) add_pose(kf);
+  std::unordered_map<MapPointId, std::array<double, 3>> positions;
+  std::vector<BAObservation> observations;
+  for (const auto& mp : points) {
+    int n = 0;
+    for (const auto& [id, obs] : mp->observations())
+      if (poses.count(id)) ++n;
+    if (n < 2) continue;  // a point seen once is not constrained (docs/TOOLCHAIN.md)
+    positions[mp->id()] = {mp->position().x(), mp->position().y(), mp->position().z()};
+    for (const auto& [id, obs] : mp->observations())
+      if (poses.count(id))
+        if (auto kf = obs.keyframe.lock(); kf && !kf->bad()) observations.push_back({kf.get(), mp.get(), obs.index});
+  }
+  if (observations.empty()) return result;
+
+  // The gauge: the origin and the fixed keyframes; with none of them, the oldest local keyframe.
+  std::unordered_set<KeyFrameId> constant;
+  for (const auto& [id, kf] : fixed) constant.insert(id);
+  if (submap.origin()) constant.insert(submap.origin()->id());
+  bool any_fixed = false;
+  for (const auto& [id, p] : poses) any_fixed |= constant.count(id) > 0;
+  if (!any_fixed) constant.insert(poses.begin()->first);
+
+  const PinholeIntrinsics K{camera.fx, camera.fy, camera.cx, camera.cy, keyframe->features().bf};
+  std::vector<char> inlier(observations.size(), 1);
+
+  auto solve = [&](bool robust, int iterations) {
+    ceres::Problem::Options po;
+    po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    ceres::Problem problem(po);
+    ceres::EigenQuaternionManifold quaternion_manifold;
+    auto* ordering = new ceres::ParameterBlockOrdering;
+    for (size_t i = 0; i < observations.size(); ++i) {
+      if (!inlier[i]) continue;
+      const BAObservation& o = observations[i];
+      const FrameFeatures& f = o.keyframe->features();
+      const size_t k = static_cast<size_t>(o.index);
+      const double inv_sigma = f.pyramid->inv_scale[static_cast<size_t>(f.levels[k])];
+      const bool stereo = f.right_u[k] >= 0;
+      ceres::CostFunction* cost = stereo ? ReprojectionCost<true>::create(K, f.points[k], f.right_u[k], inv_sigma)
+                                         : ReprojectionCost<false>::create(K, f.points[k], -1, inv_sigma);
+      ceres::LossFunction* loss =
+          robust ? new ceres::HuberLoss(std::sqrt(stereo ? options.tracking.chi2_stereo : options.tracking.chi2_mono))
+                 : nullptr;
+      double* pose = poses[o.keyframe->id()].data();
+      double* point = positions[o.point->id()].data();
+      problem.AddResidualBlock(cost, loss, pose, pose + 4, point);
+      ordering->AddElementToGroup(point, 0);
+      ordering->AddElementToGroup(pose, 1);
+      ordering->AddElementToGroup(pose + 4, 1);
+    }
+    for (auto& [id, p] : poses) {
+      if (!problem.HasParameterBlock(p.data())) continue;
+      problem.SetManifold(p.data(), &quaternion_manifold);
+      if (constant.count(id)) {
+        problem.SetParameterBlockConstant(p.data());
+        problem.SetParameterBlockConstant(p.data() + 4);
+      }
+    }
+    ceres::Solver::Options so;
+    so.linear_solver_type = ceres::DENSE_SCHUR;
+    so.linear_solver_ordering.reset(ordering);
+    so.max_num_iterations = iterations;
+    so.logging_type = ceres::SILENT;
+    so.num_threads = 1;
+    ceres::Solver::Summary summary;
+    ceres::Solve(so, &problem, &summary);
+    if (result.initial_cost == 0) result.initial_cost = summary.initial_cost;
+    result.final_cost = summary.final_cost;
+  };
+
+  auto pose_of = [&](KeyFrameId id) {
+    const auto& p = poses.at(id);
+    return SE3(Eigen::Quaterniond(p[3], p[0], p[1], p[2]).normalized(), Eigen::Vector3d(p[4], p[5], p[6]));
+  };
+  auto classify = [&]() {
+    int outliers = 0;
+    for (size_t i = 0; i < observations.size(); ++i) {
+      const BAObservation& o = observations[i];
+      const FrameFeatures& f = o.keyframe->features();
+      const size_t k = static_cast<size_t>(o.index);
+      const auto& x = positions.at(o.point->id());
+      PoseObservation po{Eigen::Vector3d(x[0], x[1], x[2]), f.points[k], f.right_u[k],
+                         f.pyramid->inv_scale[static_cast<size_t>(f.levels[k])]};
+      const double chi2 = observation_chi2(pose_of(o.keyframe->id()), po, camera, K.bf);
+      const double th = po.right_u >= 0 ? options.tracking.chi2_stereo : options.tracking.chi2_mono;
+      inlier[i] = chi2 <= th ? 1 : 0;
+      outliers += inlier[i] ? 0 : 1;
+    }
+    return outliers;
+  };
+
+  if (m.ba_iterations_robust > 0) solve(true, m.ba_iterations_robust);
+  classify();
+  if (m.ba_iterations_refine > 0) solve(false, m.ba_iterations_refine);
+  result.outliers = classify();
+
+  // Write back.
+  for (const auto& kf : local)
+    if (!constant.count(kf->id())) kf->set_pose_cw(pose_of(kf->id()));
+  for (size_t i = 0; i < observations.size(); ++i) {
+    if (inlier[i]) continue;
+    const BAObservation& o = observations[i];
+    if (o.keyframe->map_point(static_cast<size_t>(o.index)).get() == o.point) o.keyframe->erase_map_point(o.index);
+    o.point->erase_observation(o.keyframe->id());
+  }
+  for (const auto& mp : points) {
+    auto it = positions.find(mp->id());
+    if (it == positions.end() || mp->bad()) continue;
+    mp->set_position(Eigen::Vector3d(it->second[0], it->second[1], it->second[2]));
+    mp->update_normal_and_depth();
+  }
+  submap.purge_bad_points();
+  result.keyframes = static_cast<int>(local.size());
+  result.fixed_keyframes = static_cast<int>(fixed.size());
+  result.points = static_cast<int>(positions.size());
+  result.observations = static_cast<int>(observations.size());
+  return result;
+}
+
+}  // namespace wardmap::slam

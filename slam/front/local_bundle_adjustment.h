@@ -1,0 +1,29 @@
+// Local bundle adjustment (Ceres, Schur elimination of the points) around a keyframe: the keyframe
+// and its best covisible neighbours are optimised together with every point they see; the other
+// keyframes observing those points are held fixed. A robust pass (Huber) is followed by a chi2 test
+// and a refinement without outliers; the outlier observations are then removed from the map.
+#pragma once
+
+#include <memory>
+
+#include "slam/core/camera.h"
+#include "slam/front/front_options.h"
+#include "slam/front/key_frame.h"
+
+namespace wardmap::slam {
+
+class Submap;
+
+struct LocalBAResult {
+  int keyframes = 0;  // optimised
+  int fixed_keyframes = 0;
+  int points = 0;
+  int observations = 0;
+  int outliers = 0;  // observations removed
+  double initial_cost = 0, final_cost = 0;
+};
+
+LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe, Submap& submap,
+                                      const PinholeCamera& camera, const FrontOptions& options);
+
+}  // namespace wardmap::slam

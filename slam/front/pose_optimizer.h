@@ -1,0 +1,41 @@
+// Pose-only optimisation of a frame against fixed map points (ORB-SLAM's PoseOptimization with
+// Ceres): a few rounds of Levenberg-Marquardt, each followed by a chi2 test on every observation;
+// outliers are left out of the next round (and may come back), the Huber loss is used in the first
+// rounds only.
+#pragma once
+
+#include <vector>
+
+#include "slam/core/camera.h"
+#include "slam/core/se3.h"
+
+namespace wardmap::slam {
+
+struct PoseObservation {
+  Eigen::Vector3d point;   // world
+  Eigen::Vector2d pixel;   // undistorted pixel
+  double right_u = -1;     // virtual stereo coordinate (RGB-D); < 0 = none
+  double inv_sigma = 1.0;  // 1 / (level scale)
+};
+
+struct PoseOptimizerOptions {
+  int rounds = 4;
+  int iterations = 10;
+  int robust_rounds = 2;  // rounds using the Huber loss
+  double chi2_mono = 5.991;
+  double chi2_stereo = 7.815;
+};
+
+struct PoseEstimate {
+  SE3 T_cw;
+  std::vector<char> inlier;
+  int inliers = 0;
+};
+
+PoseEstimate optimize_pose(const SE3& initial_T_cw, const std::vector<PoseObservation>& observations,
+                           const PinholeCamera& camera, double bf, const PoseOptimizerOptions& options);
+
+// Squared, whitened reprojection error of one observation (chi2 with 2 or 3 dof); infinity behind the camera.
+double observation_chi2(const SE3& T_cw, const PoseObservation& o, const PinholeCamera& camera, double bf);
+
+}  // namespace wardmap::slam

@@ -1,0 +1,54 @@
+#include "slam/front/submap.h"
+
+namespace wardmap::slam {
+
+Submap::Submap(int id, std::shared_ptr<IdSource> ids) : id_(id), ids_(std::move(ids)) {}
+
+std::shared_ptr<KeyFrame> Submap::create_keyframe(const Frame& frame) {
+  auto kf = std::make_shared<KeyFrame>(ids_->next_keyframe++, frame);
+  keyframes_[kf->id()] = kf;
+  if (!origin_) origin_ = kf;
+  return kf;
+}
+
+std::shared_ptr<MapPoint> Submap::create_map_point(const Eigen::Vector3d& position, const KeyFrame& first) {
+  auto mp = std::make_shared<MapPoint>(ids_->next_map_point++, position, first.id(), first.timestamp());
+  map_points_[mp->id()] = mp;
+  return mp;
+}
+
+void Submap::erase_map_point(const std::shared_ptr<MapPoint>& mp) {
+  if (!mp) return;
+  mp->set_bad();
+  map_points_.erase(mp->id());
+}
+
+void Submap::erase_keyframe(const std::shared_ptr<KeyFrame>& kf) {
+  if (!kf || kf == origin_ || kf->not_erase) return;
+  std::shared_ptr<KeyFrame> parent = kf->parent();
+  if (!parent || parent->bad()) {
+    auto cov = kf->best_covisibles(1);
+    parent = cov.empty() ? origin_ : cov.front();
+  }
+  kf->set_bad(parent);
+  keyframes_.erase(kf->id());
+}
+
+void Submap::purge_bad_points() {
+  for (auto it = map_points_.begin(); it != map_points_.end();) {
+    if (it->second->bad()) {
+      it->second->set_bad();
+      it = map_points_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+}
+
+std::vector<std::shared_ptr<KeyFrame>> Submap::recent_keyframes(size_t n) const {
+  std::vector<std::shared_ptr<KeyFrame>> out;
+  for (auto it = keyframes_.rbegin(); it != keyframes_.rend() && out.size() < n; ++it) out.push_back(it->second);
+  return out;
+}
+
+}  // namespace wardmap::slam

@@ -1,0 +1,70 @@
+// Realtime RGB-D tracking of one frame against the active submap: initialisation from the first
+// frame's depth, constant-velocity prediction + projection search of the last frame's points (fallback:
+// brute-force matching against the reference keyframe), local-map tracking (RUMI Formula 5) with
+// pose-only optimisation, and the keyframe decision. New keyframes go to the LocalMapper's queue.
+#pragma once
+
+#include <memory>
+#include <optional>
+
+#include "slam/core/camera.h"
+#include "slam/front/frame.h"
+#include "slam/front/front_options.h"
+#include "slam/front/keyframe_policy.h"
+#include "slam/front/local_mapper.h"
+#include "slam/front/orb_matcher.h"
+#include "slam/front/pose_optimizer.h"
+
+namespace wardmap::slam {
+
+class Submap;
+
+enum class TrackingState { kNotInitialised, kTracking, kLost };
+const char* to_string(TrackingState s);
+
+struct TrackingOutcome {
+  TrackingState state = TrackingState::kNotInitialised;
+  bool tracked = false;   // the frame has a pose in the submap
+  bool keyframe = false;  // a keyframe was made from it
+  int matches = 0;        // after motion / reference tracking
+  int inliers = 0;        // after local-map tracking
+  std::shared_ptr<KeyFrame> reference;
+};
+
+class Tracker {
+ public:
+  Tracker(const FrontOptions& options, const PinholeCamera& camera, LocalMapper& mapper);
+
+  // Starts over on `submap`: the next frame with enough depth initialises it at `initial_pose_cw`.
+  void set_submap(std::shared_ptr<Submap> submap, const SE3& initial_pose_cw = SE3());
+  TrackingOutcome track(Frame& frame);
+  TrackingState state() const { return state_; }
+  // Consecutive frames lost since the last tracked one.
+  int frames_lost() const { return frames_lost_; }
+
+ private:
+  bool initialise(Frame& frame);
+  bool track_with_motion_model(Frame& frame);
+  bool track_reference_keyframe(Frame& frame);
+  bool track_local_map(Frame& frame, int& inliers);
+  int optimise_frame_pose(Frame& frame);  // returns inliers; flags outliers
+  void insert_keyframe(Frame& frame);
+  KeyFrameEvidence evidence(const Frame& frame, int inliers) const;
+
+  FrontOptions options_;
+  PinholeCamera camera_;
+  OrbMatcher matcher_;
+  PoseOptimizerOptions pose_options_;
+  LocalMapper& mapper_;
+  std::shared_ptr<Submap> submap_;
+  TrackingState state_ = TrackingState::kNotInitialised;
+  std::unique_ptr<Frame> last_frame_;
+  std::optional<SE3> velocity_;  // T_{current, last}
+  std::shared_ptr<KeyFrame> reference_;
+  std::shared_ptr<KeyFrame> last_keyframe_;
+  std::uint64_t last_keyframe_frame_ = 0;
+  SE3 initial_pose_cw_;
+  int frames_lost_ = 0;
+};
+
+}  // namespace wardmap::slam

@@ -1,0 +1,141 @@
+#include <gtest/gtest.h>
+
+#include "slam/front/bounded_queue.h"
+#include "slam/front/front_process.h"
+#include "slam/front/keyframe_policy.h"
+#include "slam/front/submap.h"
+#include "slam/front/triangulation.h"
+#include "tests/slam/front/test_images.h"
+
+namespace wardmap::slam {
+
+namespace {
+
+PinholeCamera camera() {
+  PinholeCamera c;
+  c.fx = c.fy = 500;
+  c.cx = 319.5;
+  c.cy = 239.5;
+  c.width = 640;
+  c.height = 480;
+  return c;
+}
+
+std::shared_ptr<const FrameFeatures> features() {
+  static OrbExtractor ex{OrbOptions{}};
+  static auto f = make_frame_features(test::textured_image(), cv::Mat(), ex, camera(), 0.08, 10, 0.05);
+  return f;
+}
+
+}  // namespace
+
+TEST(Submap, ObservationsBuildTheCovisibilityGraph) {
+  Submap map(0);
+  std::vector<std::shared_ptr<KeyFrame>> kfs;
+  for (int k = 0; k < 3; ++k) {
+    Frame f(static_cast<std::uint64_t>(k), k * 0.1, features());
+    f.set_pose_cw(SE3(Eigen::Quaterniond::Identity(), Eigen::Vector3d(-0.1 * k, 0, 0)));
+    kfs.push_back(map.create_keyframe(f));
+  }
+  // 40 points seen by kf0 and kf1, 20 of them also by kf2; 5 seen by kf0 and kf2 only.
+  for (int i = 0; i < 45; ++i) {
+    auto mp = map.create_map_point(Eigen::Vector3d(i * 0.01, 0, 2), *kfs[0]);
+    std::vector<int> seen = i < 20   ? std::vector<int>{0, 1, 2}
+                            : i < 40 ? std::vector<int>{0, 1}
+                                     : std::vector<int>{0, 2};
+    for (int k : seen) {
+      mp->add_observation(kfs[static_cast<size_t>(k)], i);
+      kfs[static_cast<size_t>(k)]->set_map_point(static_cast<size_t>(i), mp);
+    }
+  }
+  for (auto& kf : kfs) kf->update_connections();
+  EXPECT_EQ(kfs[0]->weight(kfs[1]->id()), 40);
+  EXPECT_EQ(kfs[0]->weight(kfs[2]->id()), 25);
+  EXPECT_EQ(kfs[1]->weight(kfs[2]->id()), 20);
+  auto best = kfs[0]->best_covisibles(1);
+  ASSERT_EQ(best.size(), 1u);
+  EXPECT_EQ(best[0], kfs[1]);
+  EXPECT_EQ(kfs[1]->tracked_points(3), 20);
+
+  // Culling kf1 keeps its pose through the parent (kf0) and removes its observations.
+  const SE3 pose1 = kfs[1]->pose_cw();
+  map.erase_keyframe(kfs[1]);
+  EXPECT_TRUE(kfs[1]->bad());
+  EXPECT_EQ(map.num_keyframes(), 2u);
+  EXPECT_EQ(kfs[0]->weight(kfs[1]->id()), 0);
+  EXPECT_LT((resolved_pose_cw(kfs[1]).matrix() - pose1.matrix()).norm(), 1e-12);
+  // Moving the parent moves the culled keyframe's resolved pose with it.
+  kfs[0]->set_pose_cw(SE3(Eigen::Quaterniond::Identity(), Eigen::Vector3d(0, 0, 1)));
+  EXPECT_NEAR(resolved_pose_cw(kfs[1]).translation().z(), 1.0, 1e-12);
+  // The origin is never culled.
+  map.erase_keyframe(kfs[0]);
+  EXPECT_FALSE(kfs[0]->bad());
+}
+
+TEST(Submap, ReplacingAPointMovesItsObservations) {
+  Submap map(0);
+  Frame f0(0, 0, features()), f1(1, 0.1, features());
+  auto k0 = map.create_keyframe(f0), k1 = map.create_keyframe(f1);
+  auto a = map.create_map_point(Eigen::Vector3d(0, 0, 2), *k0);
+  auto b = map.create_map_point(Eigen::Vector3d(0, 0, 2.01), *k1);
+  a->add_observation(k0, 3);
+  k0->set_map_point(3, a);
+  b->add_observation(k1, 5);
+  k1->set_map_point(5, b);
+  b->replace_with(a);
+  EXPECT_TRUE(b->bad());
+  EXPECT_EQ(b->replaced_by(), a);
+  EXPECT_EQ(a->num_observations(), 2);
+  EXPECT_EQ(k1->map_point(5), a);
+  map.purge_bad_points();
+  EXPECT_EQ(map.num_map_points(), 1u);
+  map.erase_map_point(a);
+  EXPECT_EQ(k0->map_point(3), nullptr);
+  EXPECT_EQ(k1->map_point(5), nullptr);
+}
+
+TEST(Triangulation, RecoversAPointFromTwoViews) {
+  const Eigen::Vector3d X(0.3, -0.2, 4.0);
+  const SE3 T1, T2(Eigen::Quaterniond(Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitY())), Eigen::Vector3d(-0.2, 0, 0));
+  const Eigen::Vector3d p1 = T1 * X, p2 = T2 * X;
+  const auto Y = triangulate_dlt(p1 / p1.z(), p2 / p2.z(), T1, T2);
+  ASSERT_TRUE(Y.has_value());
+  EXPECT_LT((*Y - X).norm(), 1e-9);
+  EXPECT_LT(parallax_cos(X, Eigen::Vector3d::Zero(), T2.inverse().translation()), 1.0);
+}
+
+TEST(KeyFramePolicy, InsertsWhenTrackingWeakensOrAfterMaxFrames) {
+  TrackingOptions o;
+  KeyFrameEvidence e;
+  e.keyframes_in_map = 5;
+  e.reference_points = 400;
+  e.tracked_inliers = 380;
+  e.tracked_close = 300;
+  e.untracked_close = 10;
+  e.frames_since_keyframe = 3;
+  EXPECT_FALSE(need_new_keyframe(e, o));
+  e.tracked_inliers = 250;  // < 0.75 x 400
+  EXPECT_TRUE(need_new_keyframe(e, o));
+  e.tracked_inliers = 10;  // too weak to make a keyframe from
+  EXPECT_FALSE(need_new_keyframe(e, o));
+  e.tracked_inliers = 200;
+  e.tracked_close = 50;  // few close points tracked, many untracked
+  e.untracked_close = 200;
+  e.mapper_idle = false;
+  EXPECT_TRUE(need_new_keyframe(e, o));
+}
+
+TEST(BoundedQueue, RefusesWhenFullAndDrainsInOrder) {
+  BoundedQueue<int> q(2);
+  EXPECT_TRUE(q.try_push(1));
+  EXPECT_TRUE(q.try_push(2));
+  EXPECT_FALSE(q.try_push(3));
+  EXPECT_EQ(*q.try_pop(), 1);
+  EXPECT_EQ(*q.pop(), 2);
+  EXPECT_FALSE(q.try_pop().has_value());
+  q.close();
+  EXPECT_FALSE(q.pop().has_value());
+  EXPECT_FALSE(q.push(4));
+}
+
+}  // namespace wardmap::slam

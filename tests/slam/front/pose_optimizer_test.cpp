@@ -1,0 +1,72 @@
+#include "slam/front/pose_optimizer.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace wardmap::slam {
+
+namespace {
+PinholeCamera camera() {
+  PinholeCamera c;
+  c.fx = c.fy = 525;
+  c.cx = 319.5;
+  c.cy = 239.5;
+  c.width = 640;
+  c.height = 480;
+  return c;
+}
+}  // namespace
+
+class PoseOptimizerTest : public ::testing::TestWithParam<bool> {};
+
+TEST_P(PoseOptimizerTest, RecoversAPerturbedPoseAndFlagsOutliers) {
+  const bool stereo = GetParam();
+  const PinholeCamera cam = camera();
+  const double bf = 0.08 * cam.fx;
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> ux(-2, 2), uy(-1.5, 1.5), uz(1.5, 6);
+  std::normal_distribution<double> noise(0, 0.5);
+  const SE3 truth = SE3::exp((Vector6d() << 0.1, -0.05, 0.2, 0.02, -0.03, 0.01).finished());
+  std::vector<PoseObservation> obs;
+  std::vector<bool> is_outlier;
+  while (obs.size() < 300) {
+    const Eigen::Vector3d pc(ux(rng), uy(rng), uz(rng));
+    const Eigen::Vector2d px(cam.fx * pc.x() / pc.z() + cam.cx, cam.fy * pc.y() / pc.z() + cam.cy);
+    if (!cam.in_image(px)) continue;
+    PoseObservation o;
+    o.point = truth.inverse() * pc;
+    const bool outlier = obs.size() % 10 == 0;
+    o.pixel =
+        px + Eigen::Vector2d(noise(rng), noise(rng)) + (outlier ? Eigen::Vector2d(25, -30) : Eigen::Vector2d::Zero());
+    if (stereo) o.right_u = px.x() - bf / pc.z() + noise(rng);
+    o.inv_sigma = 1.0;
+    obs.push_back(o);
+    is_outlier.push_back(outlier);
+  }
+  const SE3 initial = truth * SE3::exp((Vector6d() << 0.05, 0.03, -0.06, 0.02, 0.015, -0.02).finished());
+  PoseOptimizerOptions options;
+  const PoseEstimate est = optimize_pose(initial, obs, cam, bf, options);
+  const SE3 err = est.T_cw * truth.inverse();
+  EXPECT_LT(err.translation().norm(), 5e-3);
+  EXPECT_LT(rotation_angle(err.rotation()), 1e-3);
+  int flagged = 0, wrong = 0;
+  for (size_t i = 0; i < obs.size(); ++i) {
+    if (is_outlier[i]) flagged += est.inlier[i] ? 0 : 1;
+    if (!is_outlier[i] && !est.inlier[i]) ++wrong;
+  }
+  EXPECT_EQ(flagged, 30);
+  EXPECT_LT(wrong, 15);  // the chi2 test at 95 % rejects ~5 % of good observations
+  EXPECT_EQ(est.inliers, static_cast<int>(std::count(est.inlier.begin(), est.inlier.end(), 1)));
+}
+
+INSTANTIATE_TEST_SUITE_P(MonoAndStereo, PoseOptimizerTest, ::testing::Values(false, true));
+
+TEST(PoseOptimizer, ChiSquareIsInfiniteBehindTheCamera) {
+  PoseObservation o;
+  o.point = Eigen::Vector3d(0, 0, -1);
+  o.pixel = Eigen::Vector2d(320, 240);
+  EXPECT_TRUE(std::isinf(observation_chi2(SE3(), o, camera(), 40)));
+}
+
+}  // namespace wardmap::slam

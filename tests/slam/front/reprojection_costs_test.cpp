@@ -1,0 +1,99 @@
+#include "slam/front/reprojection_costs.h"
+
+#include <gtest/gtest.h>
+
+namespace wardmap::slam {
+
+namespace {
+
+const PinholeIntrinsics kK{525, 520, 319.5, 239.5, 42.0};
+
+// Central differences of a cost function over its parameter blocks (ambient coordinates).
+std::vector<Eigen::MatrixXd> numeric_jacobians(const ceres::CostFunction& f, std::vector<std::vector<double>> params) {
+  const int m = f.num_residuals();
+  std::vector<Eigen::MatrixXd> J;
+  for (size_t b = 0; b < params.size(); ++b) {
+    Eigen::MatrixXd Jb(m, static_cast<int>(params[b].size()));
+    for (size_t k = 0; k < params[b].size(); ++k) {
+      const double h = 1e-6;
+      auto eval = [&](double delta) {
+        auto p = params;
+        p[b][k] += delta;
+        std::vector<const double*> ptrs;
+        for (auto& v : p) ptrs.push_back(v.data());
+        Eigen::VectorXd r(m);
+        f.Evaluate(ptrs.data(), r.data(), nullptr);
+        return r;
+      };
+      Jb.col(static_cast<int>(k)) = (eval(h) - eval(-h)) / (2 * h);
+    }
+    J.push_back(Jb);
+  }
+  return J;
+}
+
+std::vector<Eigen::MatrixXd> analytic_jacobians(const ceres::CostFunction& f, std::vector<std::vector<double>> params,
+                                                Eigen::VectorXd* residual) {
+  const int m = f.num_residuals();
+  std::vector<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J;
+  std::vector<double*> jp;
+  std::vector<const double*> ptrs;
+  for (auto& v : params) {
+    J.emplace_back(m, static_cast<int>(v.size()));
+    ptrs.push_back(v.data());
+  }
+  for (auto& j : J) jp.push_back(j.data());
+  residual->resize(m);
+  EXPECT_TRUE(f.Evaluate(ptrs.data(), residual->data(), jp.data()));
+  return {J.begin(), J.end()};
+}
+
+std::vector<double> quaternion(const Eigen::Quaterniond& q) { return {q.x(), q.y(), q.z(), q.w()}; }
+
+}  // namespace
+
+TEST(ReprojectionCosts, PoseOnlyJacobiansMatchFiniteDifferences) {
+  const Eigen::Quaterniond q = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()));
+  const std::vector<std::vector<double>> params = {quaternion(q), {0.1, -0.2, 0.3}};
+  for (bool stereo : {false, true}) {
+    std::unique_ptr<ceres::CostFunction> f(
+        stereo ? PoseReprojectionCost<true>::create(kK, {0.4, -0.3, 3.0}, {300, 250}, 290, 0.8)
+               : PoseReprojectionCost<false>::create(kK, {0.4, -0.3, 3.0}, {300, 250}, -1, 0.8));
+    Eigen::VectorXd r;
+    const auto Ja = analytic_jacobians(*f, params, &r);
+    const auto Jn = numeric_jacobians(*f, params);
+    for (size_t b = 0; b < Ja.size(); ++b) EXPECT_LT((Ja[b] - Jn[b]).norm(), 1e-4 * (1 + Jn[b].norm())) << b;
+  }
+}
+
+TEST(ReprojectionCosts, BundleAdjustmentJacobiansMatchFiniteDifferences) {
+  const Eigen::Quaterniond q = Eigen::Quaterniond(Eigen::AngleAxisd(-0.2, Eigen::Vector3d(0, 1, 0.2).normalized()));
+  const std::vector<std::vector<double>> params = {quaternion(q), {0.05, 0.1, -0.2}, {-0.5, 0.2, 2.5}};
+  for (bool stereo : {false, true}) {
+    std::unique_ptr<ceres::CostFunction> f(stereo ? ReprojectionCost<true>::create(kK, {310, 230}, 300, 1.0)
+                                                  : ReprojectionCost<false>::create(kK, {310, 230}, -1, 1.0));
+    Eigen::VectorXd r;
+    const auto Ja = analytic_jacobians(*f, params, &r);
+    const auto Jn = numeric_jacobians(*f, params);
+    for (size_t b = 0; b < Ja.size(); ++b) EXPECT_LT((Ja[b] - Jn[b]).norm(), 1e-4 * (1 + Jn[b].norm())) << b;
+  }
+}
+
+TEST(ReprojectionCosts, ResidualIsZeroAtTheTrueProjection) {
+  const Eigen::Vector3d pw(0.3, -0.1, 2.0);
+  const Eigen::Quaterniond q = Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitY()));
+  const Eigen::Vector3d t(0.1, 0.0, 0.2);
+  const Eigen::Vector3d pc = q * pw + t;
+  const Eigen::Vector2d px(kK.fx * pc.x() / pc.z() + kK.cx, kK.fy * pc.y() / pc.z() + kK.cy);
+  const double ur = px.x() - kK.bf / pc.z();
+  std::unique_ptr<ceres::CostFunction> f(PoseReprojectionCost<true>::create(kK, pw, px, ur, 1.0));
+  const std::vector<double> qv = quaternion(q), tv = {t.x(), t.y(), t.z()};
+  const double* p[] = {qv.data(), tv.data()};
+  double r[3];
+  ASSERT_TRUE(f->Evaluate(p, r, nullptr));
+  EXPECT_NEAR(r[0], 0, 1e-9);
+  EXPECT_NEAR(r[1], 0, 1e-9);
+  EXPECT_NEAR(r[2], 0, 1e-9);
+}
+
+}  // namespace wardmap::slam
