@@ -8,6 +8,7 @@
 
 #include "apps/commands/commands.h"
 #include "apps/semantic_job.h"
+#include "apps/slam_job.h"
 #include "slam/core/errors.h"
 
 namespace wardmap::apps {
@@ -22,8 +23,12 @@ struct RunArgs {
 };
 
 void run(RunArgs& a) {
-  if (a.poses != "gt")
-    throw std::runtime_error("--poses slam: the SLAM front-process is not available yet; use --poses gt");
+  if (a.poses == "slam") {
+    spdlog::info("run: {} (SLAM front-process, {})", a.job.sequence.string(), a.mode);
+    SlamJob s{a.job.sequence, a.job.settings, a.job.out, a.mode, a.job.progress};
+    run_slam_job(s);
+    return;
+  }
   if (a.mode != "rgbd")
     throw InputError(a.job.sequence.string(), "--poses gt measures objects from depth: use --mode rgbd on a sequence with depth");
   spdlog::info("run: {} (poses: ground truth, detector: {}, association: {})", a.job.sequence.string(), a.job.detector,
@@ -62,10 +67,12 @@ void add_run_command(CLI::App& app) {
       "run",
       "Run wardmap on a sequence and write a run folder: trajectory.txt, frames.csv, keyframes.txt, objects.json,\n"
       "measurements.jsonl, map.glb, report.json and report.md (with the object figures when the sequence has object ground truth).\n"
-      "Today only --poses gt works: the semantic layer on the sequence's ground-truth poses.");
+      "--poses slam runs the RGB-D front-process (trajectory, frames, keyframes, points.ply, timing.csv, report with\n"
+      "ATE and tracking rate); --poses gt runs the semantic layer on the sequence's ground-truth poses. The two are\n"
+      "not yet joined, and monocular mode is not written.");
   cmd->add_option("sequence", a->job.sequence, "Sequence folder (TUM RGB-D, 7-Scenes, a wardmap synth output, ...)")->required();
   cmd->add_option("--out", a->job.out, "Run folder to write");
-  cmd->add_option("--poses", a->poses, "Camera poses: gt (the sequence's ground truth) or slam (not available yet)")
+  cmd->add_option("--poses", a->poses, "Camera poses: gt (the sequence's ground truth) or slam (the RGB-D front-process)")
       ->capture_default_str()
       ->check(CLI::IsMember({"gt", "slam"}));
   cmd->add_option("--mode", a->mode, "Input mode: rgbd or mono")->capture_default_str()->check(CLI::IsMember({"rgbd", "mono"}));

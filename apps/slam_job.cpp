@@ -1,0 +1,144 @@
+#include "apps/slam_job.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "apps/progress.h"
+#include "slam/core/errors.h"
+#include "slam/eval/trajectory_eval.h"
+#include "slam/front/front_process.h"
+#include "slam/io/sequence.h"
+#include "slam/io/settings.h"
+#include "slam/io/text_file.h"
+#include "slam/io/trajectory_io.h"
+
+namespace wardmap::apps {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[static_cast<size_t>(q * (v.size() - 1))];
+}
+
+}  // namespace
+
+double run_slam_job(const SlamJob& job) {
+  if (job.mode != "rgbd")
+    throw std::runtime_error("--mode mono: monocular initialisation is not written yet; use --mode rgbd");
+  fs::path settings_file = job.settings;
+  if (settings_file.empty()) {
+    settings_file = job.sequence / "settings.yaml";
+    if (!fs::exists(settings_file))
+      throw InputError(job.sequence.string(), "no calibration: give --settings (see data/settings/)");
+  }
+  const slam::io::Settings settings = slam::io::load_settings(settings_file);
+  const slam::FrontOptions options = slam::load_front_options(settings);
+  slam::io::ReaderOptions ro;
+  ro.depth_factor = settings.camera.depth_map_factor;
+  auto reader = slam::io::open_sequence(job.sequence, ro);
+  const auto& info = reader->info();
+  if (!info.has_depth) throw InputError(job.sequence.string(), "--mode rgbd needs depth images, and this sequence has none");
+  const auto& cam = settings.camera.camera;
+  if (cam.width != info.width || cam.height != info.height)
+    throw InputError(settings_file.string(), "calibration is for " + std::to_string(cam.width) + "x" +
+                                                 std::to_string(cam.height) + " images, the sequence's are " +
+                                                 std::to_string(info.width) + "x" + std::to_string(info.height));
+
+  slam::FrontProcess front(options, cam);
+  std::string frames_csv = "timestamp,status,submap\n", timing_csv = "timestamp,seconds,extract_seconds,mapping_seconds\n";
+  std::vector<double> seconds;
+  char line[160];
+  Progress progress("slam", reader->size(), job.progress);
+  for (size_t i = 0; i < reader->size(); ++i) {
+    progress.update(i + 1);
+    const slam::FrameResult r = front.process(reader->read(i));
+    std::snprintf(line, sizeof line, "%.6f,%s,%d\n", r.timestamp, r.tracked ? "tracked" : "lost", r.submap);
+    frames_csv += line;
+    std::snprintf(line, sizeof line, "%.6f,%.6f,%.6f,%.6f\n", r.timestamp, r.seconds, r.extract_seconds, r.mapping_seconds);
+    timing_csv += line;
+    seconds.push_back(r.seconds);
+  }
+  progress.finish();
+
+  const slam::Trajectory traj = front.trajectory();
+  json report = {{"sequence", job.sequence.string()}, {"mode", job.mode}, {"settings", settings_file.string()},
+                 {"frames", reader->size()}, {"frames_in_final_map", traj.size()}, {"submaps", front.submaps().size()},
+                 {"tracking_ms", {{"median", 1e3 * percentile(seconds, 0.5)}, {"p95", 1e3 * percentile(seconds, 0.95)},
+                                  {"max", 1e3 * percentile(seconds, 1.0)}}}};
+  double rate = -1;
+  std::string md = "# wardmap run (SLAM front-process)\n\n- sequence: `" + job.sequence.string() + "`\n- mode: " + job.mode +
+                   "\n- frames: " + std::to_string(reader->size()) + ", in the final map: " + std::to_string(traj.size()) +
+                   ", submaps: " + std::to_string(front.submaps().size()) + "\n";
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "- tracking time per frame: median %.1f ms, p95 %.1f ms\n", 1e3 * percentile(seconds, 0.5),
+                1e3 * percentile(seconds, 0.95));
+  md += buf;
+  if (info.has_ground_truth && traj.size() >= 3) {
+    const auto& gt = reader->ground_truth();
+    const auto pairs = slam::eval::associate(gt, traj, {});
+    rate = slam::eval::tracking_rate(gt, traj, {});
+    if (pairs.size() >= 3) {
+      const auto ate = slam::eval::compute_ate(gt, traj, pairs, slam::eval::Alignment::SE3);
+      report["ate_se3"] = {{"rmse", ate.stats.rmse}, {"mean", ate.stats.mean}, {"median", ate.stats.median},
+                           {"max", ate.stats.max}, {"pairs", pairs.size()}};
+      std::snprintf(buf, sizeof buf, "- ATE (SE(3)) RMSE %.4f m, median %.4f m, max %.4f m over %zu poses\n", ate.stats.rmse,
+                    ate.stats.median, ate.stats.max, pairs.size());
+      md += buf;
+      std::printf("ATE (SE(3)) RMSE %.4f m over %zu poses\n", ate.stats.rmse, pairs.size());
+    }
+    report["tracking_rate"] = rate;
+    std::snprintf(buf, sizeof buf, "- tracking rate %.1f %%\n", rate);
+    md += buf;
+    std::printf("tracking rate %.1f %%\n", rate);
+  }
+  std::printf("frames %zu, in the final map %zu, submaps %zu, median tracking time %.1f ms\n", reader->size(), traj.size(),
+              front.submaps().size(), 1e3 * percentile(seconds, 0.5));
+
+  if (!job.out.empty()) {
+    namespace io = slam::io;
+    io::write_tum(job.out / "trajectory.txt", traj);
+    io::write_file_atomic(job.out / "frames.csv", frames_csv);
+    io::write_file_atomic(job.out / "timing.csv", timing_csv);
+    // Keyframes and points of the submap that holds the final trajectory (the largest).
+    const slam::Submap* best = nullptr;
+    size_t best_n = 0;
+    for (const auto& s : front.submaps())
+      if (!best || front.trajectory(s->id()).size() > best_n) best = s.get(), best_n = front.trajectory(s->id()).size();
+    slam::Trajectory kfs;
+    std::string ply_body;
+    size_t points = 0;
+    if (best) {
+      std::vector<std::shared_ptr<slam::KeyFrame>> list;
+      for (const auto& [id, kf] : best->keyframes())
+        if (!kf->bad()) list.push_back(kf);
+      std::sort(list.begin(), list.end(), [](const auto& a, const auto& b) { return a->timestamp() < b->timestamp(); });
+      for (const auto& kf : list) kfs.push_back(kf->timestamp(), slam::resolved_pose_cw(kf).inverse());
+      for (const auto& [id, p] : best->map_points()) {
+        if (p->bad()) continue;
+        std::snprintf(line, sizeof line, "%.5f %.5f %.5f\n", p->position().x(), p->position().y(), p->position().z());
+        ply_body += line;
+        ++points;
+      }
+    }
+    io::write_tum(job.out / "keyframes.txt", kfs);
+    io::write_file_atomic(job.out / "points.ply", "ply\nformat ascii 1.0\nelement vertex " + std::to_string(points) +
+                                                      "\nproperty float x\nproperty float y\nproperty float z\nend_header\n" +
+                                                      ply_body);
+    report["keyframes"] = kfs.size();
+    report["map_points"] = points;
+    io::write_file_atomic(job.out / "report.json", report.dump(2) + "\n");
+    io::write_file_atomic(job.out / "report.md", md);
+    std::printf("outputs in %s\n", job.out.c_str());
+  }
+  return rate;
+}
+
+}  // namespace wardmap::apps

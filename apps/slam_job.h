@@ -1,0 +1,21 @@
+// The SLAM front-process run on a sequence (wardmap run --poses slam): tracking and local mapping,
+// then the run folder's trajectory, frames, keyframes, point cloud, timings and report.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace wardmap::apps {
+
+struct SlamJob {
+  std::filesystem::path sequence;
+  std::filesystem::path settings;  // empty: the sequence folder's settings.yaml
+  std::filesystem::path out;
+  std::string mode = "rgbd";
+  bool progress = true;
+};
+
+// Returns the tracking rate (%) when the sequence has ground truth, else -1.
+double run_slam_job(const SlamJob& job);
+
+}  // namespace wardmap::apps
