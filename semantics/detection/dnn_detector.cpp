@@ -1,5 +1,7 @@
 #include "semantics/detection/dnn_detector.h"
 
+#include "semantics/detection/onnx_net.h"
+
 #include <algorithm>
 #include <map>
 
@@ -21,15 +23,7 @@ DnnDetector::DnnDetector(ModelDescription model, const fs::path& onnx_file, cons
     group_of_class_.push_back(label.empty() ? -1 : group_ids.emplace(label, next).first->second);
   }
 
-  if (!fs::is_regular_file(onnx_file)) throw InputError(onnx_file.string(), "model file not found");
-  try {
-    net_ = cv::dnn::readNetFromONNX(onnx_file.string());
-  } catch (const cv::Exception& ex) {
-    throw InputError(onnx_file.string(), "cannot load the ONNX model: " + ex.msg);
-  }
-  if (net_.empty()) throw InputError(onnx_file.string(), "cannot load the ONNX model (empty network)");
-  net_.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
-  net_.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
+  net_ = load_onnx_net(onnx_file, "model file not found");
 
   output_names_ = model_.output.names;
   output_names_.insert(output_names_.end(), model_.output.box_names.begin(), model_.output.box_names.end());

@@ -1,5 +1,7 @@
 #include "semantics/detection/embedder.h"
 
+#include "semantics/detection/onnx_net.h"
+
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
@@ -19,16 +21,7 @@ const cv::Scalar kStd(0.229, 0.224, 0.225);
 }  // namespace
 
 Embedder::Embedder(const std::filesystem::path& onnx_file) {
-  if (!std::filesystem::is_regular_file(onnx_file))
-    throw InputError(onnx_file.string(), "embedding model not found (models/README.md says where to get OSNet x0.25)");
-  try {
-    net_ = cv::dnn::readNetFromONNX(onnx_file.string());
-  } catch (const cv::Exception& ex) {
-    throw InputError(onnx_file.string(), "cannot load the ONNX model: " + ex.msg);
-  }
-  if (net_.empty()) throw InputError(onnx_file.string(), "cannot load the ONNX model (empty network)");
-  net_.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
-  net_.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
+  net_ = load_onnx_net(onnx_file, "embedding model not found (models/README.md says where to get OSNet x0.25)");
 }
 
 Eigen::VectorXf Embedder::embed(const cv::Mat& image, const Eigen::Vector4d& box) {
