@@ -13,6 +13,7 @@
 #include "semantics/export/gltf_export.h"
 #include "semantics/object_map_io.h"
 #include "slam/core/errors.h"
+#include "slam/eval/trajectory_eval.h"
 #include "slam/io/sequence.h"
 #include "slam/io/settings.h"
 #include "slam/io/text_file.h"
@@ -56,7 +57,7 @@ std::string format_object_evaluation(const semantics::ObjectEvaluation& e) {
 SemanticRun run_semantic_job(const SemanticJob& job) {
   auto reader = slam::io::open_sequence(job.sequence);
   const auto& info = reader->info();
-  if (!info.has_ground_truth)
+  if (!job.keyframes && !info.has_ground_truth)
     throw InputError(job.sequence.string(), "--poses gt needs ground-truth poses, and this sequence has none");
 
   std::optional<slam::io::Settings> settings;
@@ -102,24 +103,39 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
 
   semantics::SemanticMapper mapper(options, *detector, embed, camera);
   const slam::Trajectory& gt = reader->ground_truth();
-  mapper.set_up(semantics::estimate_up(gt.poses));
-
-  semantics::KeyframeSelector selector(options.keyframes);
   SemanticRun run;
   run.frames = static_cast<int>(reader->size());
   slam::Trajectory trajectory;
-  Progress progress("semantics", reader->size(), job.progress);
-  for (size_t i = 0; i < reader->size(); ++i) {
-    progress.update(i + 1);
-    const auto& pose = reader->gt_pose(i);
-    if (!pose) continue;
-    trajectory.push_back(reader->timestamp(i), *pose);
-    if (!selector.accept(*pose)) continue;
-    const slam::io::Frame f = reader->read(i);
-    semantics::KeyframeInput kf{f.timestamp, f.image, f.depth, *pose};
-    mapper.add_keyframe(kf);
+  if (job.keyframes) {
+    // Keyframes from the SLAM, in its world.
+    mapper.set_up(semantics::estimate_up(job.keyframes->poses));
+    std::vector<double> times;
+    for (size_t i = 0; i < reader->size(); ++i) times.push_back(reader->timestamp(i));
+    Progress progress("semantics", job.keyframes->size(), job.progress);
+    for (size_t k = 0; k < job.keyframes->size(); ++k) {
+      progress.update(k + 1);
+      const auto i = slam::io::nearest_within(times, job.keyframes->timestamps[k], 1e-3);
+      if (!i) throw InputError(job.sequence.string(), "no frame at keyframe time " + std::to_string(job.keyframes->timestamps[k]));
+      const slam::io::Frame f = reader->read(*i);
+      mapper.add_keyframe({f.timestamp, f.image, f.depth, job.keyframes->poses[k]});
+    }
+    progress.finish();
+    trajectory = *job.trajectory;
+  } else {
+    mapper.set_up(semantics::estimate_up(gt.poses));
+    semantics::KeyframeSelector selector(options.keyframes);
+    Progress progress("semantics", reader->size(), job.progress);
+    for (size_t i = 0; i < reader->size(); ++i) {
+      progress.update(i + 1);
+      const auto& pose = reader->gt_pose(i);
+      if (!pose) continue;
+      trajectory.push_back(reader->timestamp(i), *pose);
+      if (!selector.accept(*pose)) continue;
+      const slam::io::Frame f = reader->read(i);
+      mapper.add_keyframe({f.timestamp, f.image, f.depth, *pose});
+    }
+    progress.finish();
   }
-  progress.finish();
   run.result = mapper.build_map();
   run.measurements = mapper.measurements();
   run.keyframes = mapper.keyframes();
@@ -138,23 +154,32 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
     }
     std::vector<semantics::TrueObject> estimated;
     for (const auto& l : run.result.landmarks) estimated.push_back({l.id, l.label, l.pose});
+    // The run's world onto the ground truth's (identity on ground-truth poses; SE(3) for RGB-D SLAM).
+    slam::Sim3 align;
+    if (job.trajectory && !gt.empty()) {
+      const auto pairs = slam::eval::associate(gt, *job.trajectory, {});
+      if (pairs.size() >= 3) align = slam::eval::compute_ate(gt, *job.trajectory, pairs, slam::eval::Alignment::SE3).transform;
+    }
     run.evaluation = semantics::evaluate_objects(records, estimated, semantics::read_objects_json(truth_file),
-                                                 semantics::load_annotations(ann_file), slam::Sim3());
+                                                 semantics::load_annotations(ann_file), align);
   }
 
   if (!job.out.empty()) {
     namespace io = slam::io;
-    io::write_tum(job.out / "trajectory.txt", trajectory);
-    slam::Trajectory kfs;
-    for (const auto& k : run.keyframes) kfs.push_back(k.timestamp, k.T_wc);
-    io::write_tum(job.out / "keyframes.txt", kfs);
-    std::string frames = "timestamp,status,submap\n";
-    char line[96];
-    for (size_t i = 0; i < trajectory.size(); ++i) {
-      std::snprintf(line, sizeof line, "%.6f,ground_truth,0\n", trajectory.timestamps[i]);
-      frames += line;
+    const bool own_run = job.keyframes == nullptr;  // else the SLAM writes the trajectory files
+    if (own_run) {
+      io::write_tum(job.out / "trajectory.txt", trajectory);
+      slam::Trajectory kfs;
+      for (const auto& k : run.keyframes) kfs.push_back(k.timestamp, k.T_wc);
+      io::write_tum(job.out / "keyframes.txt", kfs);
+      std::string frames = "timestamp,status,submap\n";
+      char line[96];
+      for (size_t i = 0; i < trajectory.size(); ++i) {
+        std::snprintf(line, sizeof line, "%.6f,ground_truth,0\n", trajectory.timestamps[i]);
+        frames += line;
+      }
+      io::write_file_atomic(job.out / "frames.csv", frames);
     }
-    io::write_file_atomic(job.out / "frames.csv", frames);
     io::write_file_atomic(job.out / "objects.json", semantics::format_objects_json(run.result.landmarks));
     io::write_file_atomic(job.out / "measurements.jsonl", semantics::format_measurements_jsonl(run.measurements, run.result));
     semantics::GltfMapContent map;
@@ -165,7 +190,7 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
     map.up = semantics::estimate_up(gt.poses);
     semantics::write_map_glb(job.out / "map.glb", map);
     const auto& T = run.times;
-    json report = {{"sequence", job.sequence.string()}, {"poses", "gt"}, {"detector", job.detector},
+    json report = {{"sequence", job.sequence.string()}, {"poses", own_run ? "gt" : "slam"}, {"detector", job.detector},
                    {"association", job.association}, {"seed", job.seed}, {"frames", run.frames},
                    {"keyframes", run.keyframes.size()}, {"groups", run.result.num_groups},
                    {"group_objects", run.result.num_group_objects}, {"measurements", run.measurements.size()},
@@ -174,7 +199,7 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
                                        {"embedding_median_per_keyframe", median(T.embedding)},
                                        {"measurement_median_per_keyframe", median(T.measurement)},
                                        {"mot_total", T.mot}, {"hdp_total", T.hdp}, {"pose_selection_total", T.pose_selection}}}};
-    std::string md = "# wardmap run\n\n- sequence: `" + job.sequence.string() + "`\n- poses: ground truth\n- detector: " +
+    std::string md = "# wardmap run\n\n- sequence: `" + job.sequence.string() + "`\n- poses: " + (own_run ? "ground truth" : "SLAM keyframes") + "\n- detector: " +
                      job.detector + "\n- association: " + job.association + "\n- keyframes: " +
                      std::to_string(run.keyframes.size()) + ", groups: " + std::to_string(run.result.num_groups) +
                      ", landmarks: " + std::to_string(run.result.landmarks.size()) + "\n";
@@ -182,8 +207,8 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
       report["objects"] = evaluation_json(*run.evaluation);
       md += "\n## Objects\n\n```\n" + format_object_evaluation(*run.evaluation) + "```\n";
     }
-    io::write_file_atomic(job.out / "report.json", report.dump(2) + "\n");
-    io::write_file_atomic(job.out / "report.md", md);
+    io::write_file_atomic(job.out / (own_run ? "report.json" : "objects_report.json"), report.dump(2) + "\n");
+    io::write_file_atomic(job.out / (own_run ? "report.md" : "objects_report.md"), md);
   }
   return run;
 }

@@ -12,6 +12,7 @@
 #include "semantics/object_metrics.h"
 #include "semantics/options.h"
 #include "semantics/semantic_mapper.h"
+#include "slam/core/trajectory.h"
 
 namespace wardmap::apps {
 
@@ -26,6 +27,12 @@ struct SemanticJob {
   bool embedding = true;
   std::uint64_t seed = 1;
   bool progress = true;
+  // From the SLAM: the keyframes to map (camera-to-world) and the run's trajectory (for aligning the
+  // objects to the ground truth). Null: keyframes are chosen from the ground truth (--poses gt), and
+  // the run folder's trajectory files and report are written too; otherwise only the object files
+  // and objects_report.json/md.
+  const slam::Trajectory* keyframes = nullptr;
+  const slam::Trajectory* trajectory = nullptr;
 };
 
 struct SemanticRun {

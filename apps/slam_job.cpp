@@ -133,6 +133,18 @@ double run_slam_job(const SlamJob& job) {
                                                       "\nproperty float x\nproperty float y\nproperty float z\nend_header\n" +
                                                       ply_body);
     report["keyframes"] = kfs.size();
+    if (job.objects) {
+      SemanticJob sj = *job.objects;
+      sj.sequence = job.sequence;
+      sj.settings = settings_file;
+      sj.out = job.out;
+      sj.keyframes = &kfs;
+      sj.trajectory = &traj;
+      const SemanticRun objects = run_semantic_job(sj);
+      report["landmarks"] = objects.result.landmarks.size();
+      std::printf("objects: %zu landmarks on %zu keyframes\n", objects.result.landmarks.size(), objects.keyframes.size());
+      if (objects.evaluation) std::printf("%s", format_object_evaluation(*objects.evaluation).c_str());
+    }
     report["map_points"] = points;
     io::write_file_atomic(job.out / "report.json", report.dump(2) + "\n");
     io::write_file_atomic(job.out / "report.md", md);

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <string>
 
+#include "apps/semantic_job.h"
+
 namespace wardmap::apps {
 
 struct SlamJob {
@@ -13,6 +15,8 @@ struct SlamJob {
   std::filesystem::path out;
   std::string mode = "rgbd";
   bool progress = true;
+  // When set, the semantic layer maps the objects on the final map's keyframes.
+  const SemanticJob* objects = nullptr;
 };
 
 // Returns the tracking rate (%) when the sequence has ground truth, else -1.

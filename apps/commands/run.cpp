@@ -20,12 +20,13 @@ struct RunArgs {
   std::string poses = "gt";
   std::string mode = "rgbd";
   bool deterministic = false;
+  bool objects = false;
 };
 
 void run(RunArgs& a) {
   if (a.poses == "slam") {
     spdlog::info("run: {} (SLAM front-process, {})", a.job.sequence.string(), a.mode);
-    SlamJob s{a.job.sequence, a.job.settings, a.job.out, a.mode, a.job.progress};
+    SlamJob s{a.job.sequence, a.job.settings, a.job.out, a.mode, a.job.progress, a.objects ? &a.job : nullptr};
     run_slam_job(s);
     return;
   }
@@ -68,8 +69,8 @@ void add_run_command(CLI::App& app) {
       "Run wardmap on a sequence and write a run folder: trajectory.txt, frames.csv, keyframes.txt, objects.json,\n"
       "measurements.jsonl, map.glb, report.json and report.md (with the object figures when the sequence has object ground truth).\n"
       "--poses slam runs the RGB-D front-process (trajectory, frames, keyframes, points.ply, timing.csv, report with\n"
-      "ATE and tracking rate); --poses gt runs the semantic layer on the sequence's ground-truth poses. The two are\n"
-      "not yet joined, and monocular mode is not written.");
+      "ATE and tracking rate), and with --objects the semantic layer on its keyframes; --poses gt runs the semantic\n"
+      "layer on the sequence's ground-truth poses. Monocular mode is not written.");
   cmd->add_option("sequence", a->job.sequence, "Sequence folder (TUM RGB-D, 7-Scenes, a wardmap synth output, ...)")->required();
   cmd->add_option("--out", a->job.out, "Run folder to write");
   cmd->add_option("--poses", a->poses, "Camera poses: gt (the sequence's ground truth) or slam (the RGB-D front-process)")
@@ -79,6 +80,7 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--association", a->job.association, "Object association: hierarchical (the paper) or hdp-only (HDP-SLAM baseline)")
       ->capture_default_str()
       ->check(CLI::IsMember({"hierarchical", "hdp-only"}));
+  cmd->add_flag("--objects", a->objects, "With --poses slam: also map the objects on the SLAM's keyframes (needs --out)");
   cmd->add_flag("--deterministic", a->deterministic, "Same input and seed give identical output (the semantic layer always is)");
   add_semantic_options(cmd, a->job);
   cmd->callback([a] { run(*a); });

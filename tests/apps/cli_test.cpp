@@ -2,6 +2,9 @@
 // file, the line where there is one, and the problem; no partial output file.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
+
 #include "tests/apps/cli_support.h"
 #include "tests/slam/io/fixtures.h"
 
@@ -115,6 +118,28 @@ TEST(CliBadInput, NoPartialOutputOnError) {
   expect_one_line_error(r, "est.txt:3: pose value: 'three' is not a number");
   for (const auto& e : fs::directory_iterator(dir))
     EXPECT_EQ(e.path().extension(), ".txt") << "left behind: " << e.path();
+}
+
+}  // namespace
+}  // namespace wardmap::test
+
+namespace wardmap::test {
+namespace {
+
+// The whole chain on a short synthetic ward: render, RGB-D SLAM, objects on the SLAM's keyframes.
+TEST(CliPipeline, SlamThenObjectsOnASyntheticWard) {
+  const fs::path dir = scratch_dir();
+  ASSERT_EQ(wardmap_cli("-q synth --scenario ward --variant quick --frames 90 --out " + shq(dir / "seq")).code, 0);
+  const CliResult r = wardmap_cli("-q run " + shq(dir / "seq") + " --poses slam --objects --no-embedding --out " + shq(dir / "run"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* f : {"trajectory.txt", "frames.csv", "keyframes.txt", "points.ply", "timing.csv", "report.json",
+                        "objects.json", "measurements.jsonl", "map.glb", "objects_report.json"})
+    EXPECT_TRUE(fs::exists(dir / "run" / f)) << f;
+  EXPECT_NE(r.output.find("tracking rate 100.0 %"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("association accuracy:"), std::string::npos) << r.output;
+  std::ifstream in(dir / "run" / "objects.json");
+  const std::string objects((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(objects.find("\"class\": \"bed\""), std::string::npos) << objects;
 }
 
 }  // namespace
