@@ -1,20 +1,13 @@
 // Object pose from depth (Assoc. Eq. 1) on rendered depth of known boxes.
 #include <gtest/gtest.h>
 
+#include "tests/support/test_camera.h"
 #include "semantics/object_measurement.h"
 
 namespace wardmap::semantics {
 namespace {
 
-slam::PinholeCamera camera() {
-  slam::PinholeCamera c;
-  c.fx = c.fy = 500;
-  c.cx = 319.5;
-  c.cy = 239.5;
-  c.width = 640;
-  c.height = 480;
-  return c;
-}
+slam::PinholeCamera camera() { return test::vga_camera(); }
 
 // Depth of a scene: a wall at z = wall, and an axis-aligned box face (front at z = front) covering
 // pixels [x0, x1) x [y0, y1). Camera at the origin looking along +z (y down), world = camera frame.

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "tests/support/test_camera.h"
 #include "slam/front/bounded_queue.h"
 #include "slam/front/front_process.h"
 #include "slam/front/keyframe_policy.h"
@@ -11,15 +12,7 @@ namespace wardmap::slam {
 
 namespace {
 
-PinholeCamera camera() {
-  PinholeCamera c;
-  c.fx = c.fy = 500;
-  c.cx = 319.5;
-  c.cy = 239.5;
-  c.width = 640;
-  c.height = 480;
-  return c;
-}
+PinholeCamera camera() { return test::vga_camera(); }
 
 std::shared_ptr<const FrameFeatures> features() {
   static OrbExtractor ex{OrbOptions{}};

@@ -1,3 +1,4 @@
+#include "tests/support/test_camera.h"
 #include "slam/front/orb_matcher.h"
 
 #include <gtest/gtest.h>
@@ -14,15 +15,7 @@ namespace wardmap::slam {
 
 namespace {
 
-PinholeCamera test_camera() {
-  PinholeCamera c;
-  c.fx = c.fy = 500;
-  c.cx = 319.5;
-  c.cy = 239.5;
-  c.width = 640;
-  c.height = 480;
-  return c;
-}
+PinholeCamera test_camera() { return test::vga_camera(); }
 
 // A fronto-parallel textured plane at `depth` metres seen by a camera translated by `tx` metres
 // along x: the image shifts by -fx tx / depth pixels.
