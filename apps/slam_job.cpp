@@ -31,8 +31,6 @@ double percentile(std::vector<double> v, double q) {
 }  // namespace
 
 double run_slam_job(const SlamJob& job) {
-  if (job.mode != "rgbd")
-    throw std::runtime_error("--mode mono: monocular initialisation is not written yet; use --mode rgbd");
   fs::path settings_file = job.settings;
   if (settings_file.empty()) {
     settings_file = job.sequence / "settings.yaml";
@@ -40,12 +38,15 @@ double run_slam_job(const SlamJob& job) {
       throw InputError(job.sequence.string(), "no calibration: give --settings (see data/settings/)");
   }
   const slam::io::Settings settings = slam::io::load_settings(settings_file);
-  const slam::FrontOptions options = slam::load_front_options(settings);
+  slam::FrontOptions options = slam::load_front_options(settings);
   slam::io::ReaderOptions ro;
   ro.depth_factor = settings.camera.depth_map_factor;
   auto reader = slam::io::open_sequence(job.sequence, ro);
   const auto& info = reader->info();
-  if (!info.has_depth) throw InputError(job.sequence.string(), "--mode rgbd needs depth images, and this sequence has none");
+  const std::string mode = job.mode.empty() ? (info.has_depth ? "rgbd" : "mono") : job.mode;
+  if (mode == "rgbd" && !info.has_depth)
+    throw InputError(job.sequence.string(), "--mode rgbd needs depth images, and this sequence has none");
+  options.monocular = mode == "mono";
   const auto& cam = settings.camera.camera;
   if (cam.width != info.width || cam.height != info.height)
     throw InputError(settings_file.string(), "calibration is for " + std::to_string(cam.width) + "x" +
@@ -69,12 +70,12 @@ double run_slam_job(const SlamJob& job) {
   progress.finish();
 
   const slam::Trajectory traj = front.trajectory();
-  json report = {{"sequence", job.sequence.string()}, {"mode", job.mode}, {"settings", settings_file.string()},
+  json report = {{"sequence", job.sequence.string()}, {"mode", mode}, {"settings", settings_file.string()},
                  {"frames", reader->size()}, {"frames_in_final_map", traj.size()}, {"submaps", front.submaps().size()},
                  {"tracking_ms", {{"median", 1e3 * percentile(seconds, 0.5)}, {"p95", 1e3 * percentile(seconds, 0.95)},
                                   {"max", 1e3 * percentile(seconds, 1.0)}}}};
   double rate = -1;
-  std::string md = "# wardmap run (SLAM front-process)\n\n- sequence: `" + job.sequence.string() + "`\n- mode: " + job.mode +
+  std::string md = "# wardmap run (SLAM front-process)\n\n- sequence: `" + job.sequence.string() + "`\n- mode: " + mode +
                    "\n- frames: " + std::to_string(reader->size()) + ", in the final map: " + std::to_string(traj.size()) +
                    ", submaps: " + std::to_string(front.submaps().size()) + "\n";
   char buf[256];

@@ -13,8 +13,9 @@ struct SlamJob {
   std::filesystem::path sequence;
   std::filesystem::path settings;  // empty: the sequence folder's settings.yaml
   std::filesystem::path out;
-  std::string mode = "rgbd";
+  std::string mode;  // "rgbd", "mono", or empty: rgbd when the sequence has depth, else mono
   bool progress = true;
+  bool deterministic = false;  // local mapping on the tracking thread: identical output on reruns
   // When set, the semantic layer maps the objects on the final map's keyframes.
   const SemanticJob* objects = nullptr;
 };

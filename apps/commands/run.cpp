@@ -1,5 +1,5 @@
-// wardmap run <sequence>: the semantic layer on ground-truth poses (--poses gt); the SLAM
-// front-process (--poses slam) is not written yet.
+// wardmap run <sequence>: the SLAM front-process (--poses slam, the default), with the semantic layer on
+// its keyframes (--objects), or the semantic layer alone on ground-truth poses (--poses gt).
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
@@ -17,20 +17,21 @@ namespace {
 
 struct RunArgs {
   SemanticJob job;
-  std::string poses = "gt";
-  std::string mode = "rgbd";
+  std::string poses = "slam";
+  std::string mode;  // empty: rgbd when the sequence has depth, else mono
   bool deterministic = false;
   bool objects = false;
 };
 
 void run(RunArgs& a) {
   if (a.poses == "slam") {
-    spdlog::info("run: {} (SLAM front-process, {})", a.job.sequence.string(), a.mode);
-    SlamJob s{a.job.sequence, a.job.settings, a.job.out, a.mode, a.job.progress, a.objects ? &a.job : nullptr};
+    spdlog::info("run: {} (SLAM front-process{})", a.job.sequence.string(), a.mode.empty() ? "" : ", " + a.mode);
+    SlamJob s{a.job.sequence, a.job.settings, a.job.out, a.mode, a.job.progress, a.deterministic,
+              a.objects ? &a.job : nullptr};
     run_slam_job(s);
     return;
   }
-  if (a.mode != "rgbd")
+  if (a.mode == "mono")
     throw InputError(a.job.sequence.string(), "--poses gt measures objects from depth: use --mode rgbd on a sequence with depth");
   spdlog::info("run: {} (poses: ground truth, detector: {}, association: {})", a.job.sequence.string(), a.job.detector,
                a.job.association);
@@ -68,20 +69,20 @@ void add_run_command(CLI::App& app) {
       "run",
       "Run wardmap on a sequence and write a run folder: trajectory.txt, frames.csv, keyframes.txt, objects.json,\n"
       "measurements.jsonl, map.glb, report.json and report.md (with the object figures when the sequence has object ground truth).\n"
-      "--poses slam runs the RGB-D front-process (trajectory, frames, keyframes, points.ply, timing.csv, report with\n"
-      "ATE and tracking rate), and with --objects the semantic layer on its keyframes; --poses gt runs the semantic\n"
-      "layer on the sequence's ground-truth poses. Monocular mode is not written.");
+      "--poses slam runs the SLAM front-process, monocular or RGB-D (trajectory, frames, keyframes, points.ply,\n"
+      "timing.csv, report with ATE and tracking rate), and with --objects the semantic layer on its keyframes;\n"
+      "--poses gt runs the semantic layer on the sequence's ground-truth poses (needs depth).");
   cmd->add_option("sequence", a->job.sequence, "Sequence folder (TUM RGB-D, 7-Scenes, a wardmap synth output, ...)")->required();
   cmd->add_option("--out", a->job.out, "Run folder to write");
-  cmd->add_option("--poses", a->poses, "Camera poses: gt (the sequence's ground truth) or slam (the RGB-D front-process)")
+  cmd->add_option("--poses", a->poses, "Camera poses: slam (the front-process) or gt (the sequence's ground truth)")
       ->capture_default_str()
       ->check(CLI::IsMember({"gt", "slam"}));
-  cmd->add_option("--mode", a->mode, "Input mode: rgbd or mono")->capture_default_str()->check(CLI::IsMember({"rgbd", "mono"}));
+  cmd->add_option("--mode", a->mode, "SLAM input: rgbd or mono (default: rgbd when the sequence has depth images, else mono)")->check(CLI::IsMember({"rgbd", "mono"}));
   cmd->add_option("--association", a->job.association, "Object association: hierarchical (the paper) or hdp-only (HDP-SLAM baseline)")
       ->capture_default_str()
       ->check(CLI::IsMember({"hierarchical", "hdp-only"}));
   cmd->add_flag("--objects", a->objects, "With --poses slam: also map the objects on the SLAM's keyframes (needs --out)");
-  cmd->add_flag("--deterministic", a->deterministic, "Same input and seed give identical output (the semantic layer always is)");
+  cmd->add_flag("--deterministic", a->deterministic, "Byte-identical output on reruns: local mapping runs on the tracking thread instead of its own");
   add_semantic_options(cmd, a->job);
   cmd->callback([a] { run(*a); });
 }

@@ -42,6 +42,21 @@ void FrontOptions::validate(const std::filesystem::path& file) const {
   check_range(t.keyframe_close_untracked, 0, 100000, "tracking.keyframe_close_untracked", file);
   check_range(t.lost_frames_to_reset, 1, 100000, "tracking.lost_frames_to_reset", file);
   check_range(t.min_depth_points, 0, 100000, "tracking.min_depth_points", file);
+  check_range(t.motion_radius_mono, 1.0, 200.0, "tracking.motion_radius_mono", file);
+  check_range(t.keyframe_ref_ratio_mono, 0.0, 1.0, "tracking.keyframe_ref_ratio_mono", file);
+  check_range(t.init_min_features, 8, 100000, "tracking.init_min_features", file);
+  check_range(t.init_min_matches, 8, 100000, "tracking.init_min_matches", file);
+  check_range(t.init_window, 1.0, 2000.0, "tracking.init_window", file);
+  check_range(t.init_ratio, 0.1, 1.0, "tracking.init_ratio", file);
+  check_range(t.init_max_frames, 1, 100000, "tracking.init_max_frames", file);
+  const TwoViewOptions& v = t.two_view;
+  check_range(v.ransac_iterations, 1, 100000, "tracking.init_ransac_iterations", file);
+  check_range(v.sigma, 0.1, 10.0, "tracking.init_sigma", file);
+  check_range(v.homography_share, 0.0, 1.0, "tracking.init_homography_share", file);
+  check_range(v.min_parallax_deg, 0.0, 90.0, "tracking.init_min_parallax_deg", file);
+  check_range(v.min_triangulated, 8, 100000, "tracking.init_min_triangulated", file);
+  check_range(v.min_good_ratio, 0.0, 1.0, "tracking.init_min_good_ratio", file);
+  check_range(v.ambiguity_ratio, 0.0, 1.0, "tracking.init_ambiguity_ratio", file);
 
   const MappingOptions& m = mapping;
   check_range(m.queue_capacity, 1, 1000, "mapping.queue_capacity", file);
@@ -56,6 +71,10 @@ void FrontOptions::validate(const std::filesystem::path& file) const {
   check_range(m.ba_max_fixed_keyframes, 0, 1000, "mapping.ba_max_fixed_keyframes", file);
   check_range(m.redundant_ratio, 0.0, 1.0, "mapping.redundant_ratio", file);
   check_range(m.redundant_observers, 1, 100, "mapping.redundant_observers", file);
+  check_range(m.inline_busy_frames, 0, 1000, "mapping.inline_busy_frames", file);
+  check_range(m.triangulation_neighbours_mono, 0, 100, "mapping.triangulation_neighbours_mono", file);
+  check_range(m.recent_min_observations_mono, 1, 100, "mapping.recent_min_observations_mono", file);
+  check_range(m.min_baseline_depth_ratio, 0.0, 1.0, "mapping.min_baseline_depth_ratio", file);
 }
 
 FrontOptions load_front_options(const io::Settings& settings) {
@@ -110,6 +129,20 @@ FrontOptions load_front_options(const io::Settings& settings) {
   read_option(t, ts, "keyframe_close_untracked", k.keyframe_close_untracked, f);
   read_option(t, ts, "lost_frames_to_reset", k.lost_frames_to_reset, f);
   read_option(t, ts, "min_depth_points", k.min_depth_points, f);
+  read_option(t, ts, "motion_radius_mono", k.motion_radius_mono, f);
+  read_option(t, ts, "keyframe_ref_ratio_mono", k.keyframe_ref_ratio_mono, f);
+  read_option(t, ts, "init_min_features", k.init_min_features, f);
+  read_option(t, ts, "init_min_matches", k.init_min_matches, f);
+  read_option(t, ts, "init_window", k.init_window, f);
+  read_option(t, ts, "init_ratio", k.init_ratio, f);
+  read_option(t, ts, "init_max_frames", k.init_max_frames, f);
+  read_option(t, ts, "init_ransac_iterations", k.two_view.ransac_iterations, f);
+  read_option(t, ts, "init_sigma", k.two_view.sigma, f);
+  read_option(t, ts, "init_homography_share", k.two_view.homography_share, f);
+  read_option(t, ts, "init_min_parallax_deg", k.two_view.min_parallax_deg, f);
+  read_option(t, ts, "init_min_triangulated", k.two_view.min_triangulated, f);
+  read_option(t, ts, "init_min_good_ratio", k.two_view.min_good_ratio, f);
+  read_option(t, ts, "init_ambiguity_ratio", k.two_view.ambiguity_ratio, f);
 
   const YAML::Node m = settings.section("mapping");
   const std::string ms = "mapping";
@@ -127,6 +160,10 @@ FrontOptions load_front_options(const io::Settings& settings) {
   read_option(m, ms, "redundant_ratio", p.redundant_ratio, f);
   read_option(m, ms, "redundant_observers", p.redundant_observers, f);
   read_option(m, ms, "keyframe_culling", p.keyframe_culling, f);
+  read_option(m, ms, "inline_busy_frames", p.inline_busy_frames, f);
+  read_option(m, ms, "triangulation_neighbours_mono", p.triangulation_neighbours_mono, f);
+  read_option(m, ms, "recent_min_observations_mono", p.recent_min_observations_mono, f);
+  read_option(m, ms, "min_baseline_depth_ratio", p.min_baseline_depth_ratio, f);
   o.validate(f);
   return o;
 }

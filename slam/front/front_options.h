@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "slam/front/two_view.h"
 #include "slam/io/settings.h"
 
 namespace wardmap::slam {
@@ -51,6 +52,15 @@ struct TrackingOptions {
   int keyframe_close_untracked = 100;  // tracking.keyframe_close_untracked
   int min_depth_points = 100;          // tracking.min_depth_points: new close points per keyframe
   int lost_frames_to_reset = 15;       // tracking.lost_frames_to_reset: lost this long, start a new submap
+  // Monocular (ORB-SLAM's values where the sensor changes them).
+  double motion_radius_mono = 15.0;     // tracking.motion_radius_mono (px): no depth to bound the search
+  double keyframe_ref_ratio_mono = 0.9; // tracking.keyframe_ref_ratio_mono
+  int init_min_features = 100;          // tracking.init_min_features: keypoints of an initialisation frame
+  int init_min_matches = 100;           // tracking.init_min_matches: else the reference frame is replaced
+  double init_window = 100.0;           // tracking.init_window (px): initialisation search window
+  double init_ratio = 0.9;              // tracking.init_ratio: best / second best distance
+  int init_max_frames = 30;             // tracking.init_max_frames: a reference older than this is replaced
+  TwoViewOptions two_view;              // tracking.init_*: H / F model selection and triangulation
 };
 
 struct MappingOptions {
@@ -67,9 +77,16 @@ struct MappingOptions {
   double redundant_ratio = 0.9;      // mapping.redundant_ratio: keyframe culling
   int redundant_observers = 3;       // mapping.redundant_observers
   bool keyframe_culling = true;      // mapping.keyframe_culling
+  // With the mapper on the tracking thread it is always idle when the tracker asks; it then counts
+  // as busy for this many frames after each keyframe, as a mapper thread would be.
+  int inline_busy_frames = 2;              // mapping.inline_busy_frames
+  int triangulation_neighbours_mono = 20;  // mapping.triangulation_neighbours_mono
+  int recent_min_observations_mono = 2;    // mapping.recent_min_observations_mono
+  double min_baseline_depth_ratio = 0.01;  // mapping.min_baseline_depth_ratio: monocular triangulation
 };
 
 struct FrontOptions {
+  bool monocular = false;  // set by the caller (--mode mono), not from the settings file
   OrbOptions orb;
   MatcherOptions matcher;
   TrackingOptions tracking;

@@ -9,6 +9,11 @@ FrontProcess::FrontProcess(const FrontOptions& options, const PinholeCamera& cam
     : options_(options),
       camera_(camera),
       extractor_(options.orb),
+      init_extractor_([&options] {
+        OrbOptions o = options.orb;
+        o.n_features *= 2;
+        return o;
+      }()),
       ids_(std::make_shared<IdSource>()),
       submap_(std::make_shared<Submap>(0, ids_)),
       mapper_(options, camera),
@@ -24,7 +29,10 @@ FrontProcess::~FrontProcess() = default;
 FrameResult FrontProcess::process(const io::Frame& in) {
   const auto start = std::chrono::steady_clock::now();
   Frame frame(next_frame_id_++, in.timestamp,
-              make_frame_features(in.image, in.depth, extractor_, camera_, options_.tracking.virtual_baseline,
+              make_frame_features(in.image, options_.monocular ? cv::Mat() : in.depth,
+                                  options_.monocular && tracker_.state() == TrackingState::kNotInitialised
+                                      ? init_extractor_
+                                      : extractor_, camera_, options_.tracking.virtual_baseline,
                                   options_.tracking.max_depth, options_.tracking.max_depth_step));
   const auto extracted = std::chrono::steady_clock::now();
   const LocalMapperStats& ms = mapper_.stats();
@@ -49,7 +57,10 @@ FrameResult FrontProcess::process(const io::Frame& in) {
     last_tracked_pose_cw_ = frame.pose_cw();
     if (t.reference)
       records_.push_back({in.timestamp, submap_->id(), t.reference, frame.pose_cw() * t.reference->pose_wc()});
-  } else if (t.state == TrackingState::kLost && tracker_.frames_lost() >= options_.tracking.lost_frames_to_reset) {
+  } else if (t.state == TrackingState::kLost &&
+             (tracker_.frames_lost() >= options_.tracking.lost_frames_to_reset ||
+              (options_.monocular && submap_->num_keyframes() <= 5))) {
+    // A monocular map this small is not worth relocalising into (ORB-SLAM resets it): start over.
     submap_ = std::make_shared<Submap>(static_cast<int>(submaps_.size()), ids_);
     submaps_.push_back(submap_);
     mapper_.set_submap(submap_);

@@ -67,6 +67,7 @@ class FrontProcess {
   FrontOptions options_;
   PinholeCamera camera_;
   OrbExtractor extractor_;
+  OrbExtractor init_extractor_;  // monocular initialisation: twice the features (ORB-SLAM's choice)
   std::shared_ptr<IdSource> ids_;
   std::shared_ptr<Submap> submap_;
   std::vector<std::shared_ptr<Submap>> submaps_;

@@ -99,4 +99,13 @@ void KeyFrame::set_bad(const std::shared_ptr<KeyFrame>& new_parent) {
   bad_ = true;
 }
 
+double median_scene_depth(const KeyFrame& kf) {
+  std::vector<double> z;
+  for (const auto& mp : kf.map_points())
+    if (mp && !mp->bad()) z.push_back((kf.pose_cw() * mp->position()).z());
+  if (z.empty()) return 0;
+  std::nth_element(z.begin(), z.begin() + static_cast<long>(z.size() / 2), z.end());
+  return z[z.size() / 2];
+}
+
 }  // namespace wardmap::slam

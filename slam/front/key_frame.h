@@ -14,6 +14,10 @@
 
 namespace wardmap::slam {
 
+class KeyFrame;
+// Median depth of the keyframe's map points in its camera frame (0 when it has none).
+double median_scene_depth(const KeyFrame& kf);
+
 class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
  public:
   KeyFrame(KeyFrameId id, const Frame& frame);

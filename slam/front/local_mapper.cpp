@@ -73,7 +73,8 @@ void LocalMapper::cull_recent_points(const std::shared_ptr<KeyFrame>& kf) {
     if (mp->bad()) {
       it = recent_points_.erase(it);
     } else if (mp->found_ratio() < m.recent_found_ratio ||
-               (age >= 2 && mp->num_observations() < m.recent_min_observations)) {
+               (age >= 2 && mp->num_observations() < (options_.monocular ? m.recent_min_observations_mono
+                                                                   : m.recent_min_observations))) {
       submap_->erase_map_point(mp);
       ++stats_.culled_points;
       it = recent_points_.erase(it);
@@ -86,14 +87,20 @@ void LocalMapper::cull_recent_points(const std::shared_ptr<KeyFrame>& kf) {
 }
 
 void LocalMapper::triangulate_with_neighbours(const std::shared_ptr<KeyFrame>& kf) {
-  const int n = options_.mapping.triangulation_neighbours;
+  const bool mono = options_.monocular;
+  const int n = mono ? options_.mapping.triangulation_neighbours_mono : options_.mapping.triangulation_neighbours;
   if (n <= 0) return;
   const FrameFeatures& f1 = kf->features();
   const double cos_max = std::cos(options_.mapping.min_parallax_deg * M_PI / 180.0);
   const double chi2_mono = options_.tracking.chi2_mono;
   for (const auto& nb : kf->best_covisibles(n)) {
     const double baseline = (nb->camera_center() - kf->camera_center()).norm();
-    if (baseline < options_.tracking.virtual_baseline) continue;  // RGB-D depth is better here
+    if (mono) {
+      const double depth = median_scene_depth(*nb);
+      if (depth <= 0 || baseline / depth < options_.mapping.min_baseline_depth_ratio) continue;
+    } else if (baseline < options_.tracking.virtual_baseline) {
+      continue;  // RGB-D depth is better here
+    }
     const FrameFeatures& f2 = nb->features();
     for (const auto& [i1, i2] : matcher_.search_for_triangulation(*kf, *nb)) {
       const size_t a = static_cast<size_t>(i1), b = static_cast<size_t>(i2);
@@ -181,7 +188,8 @@ void LocalMapper::cull_keyframes(const std::shared_ptr<KeyFrame>& kf) {
     for (size_t i = 0; i < nb->size(); ++i) {
       const auto& mp = nb->map_point(i);
       if (!mp || mp->bad()) continue;
-      if (f.depth[i] <= 0 || f.depth[i] > options_.tracking.close_depth) continue;
+      // RGB-D: only close points count (ORB-SLAM); monocular: all of them.
+      if (!options_.monocular && (f.depth[i] <= 0 || f.depth[i] > options_.tracking.close_depth)) continue;
       ++close_points;
       if (mp->num_observations() <= m.redundant_observers) continue;
       const int level = f.levels[i];

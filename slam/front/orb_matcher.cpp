@@ -148,6 +148,36 @@ int OrbMatcher::search_by_knn(const KeyFrame& keyframe, Frame& frame) const {
   return matches;
 }
 
+std::vector<int> OrbMatcher::search_for_initialisation(const FrameFeatures& f1, const FrameFeatures& f2,
+                                                       std::vector<Eigen::Vector2d>& prior, double window,
+                                                       double ratio) const {
+  std::vector<int> m12(f1.size(), -1), m21(f2.size(), -1), dist21(f2.size(), INT_MAX);
+  RotationHistogram hist(o_.histogram_bins);
+  for (size_t i = 0; i < f1.size(); ++i) {
+    const int level = f1.levels[i];
+    if (level > 1) continue;  // coarse levels localise too poorly for the two-view geometry
+    Best best;
+    for (int j : f2.grid.in_area(prior[i].x(), prior[i].y(), window, level, level))
+      best.offer(descriptor_distance(f1.descriptor(i), f2.descriptor(static_cast<size_t>(j))), j, 0);
+    if (best.idx < 0 || best.dist > o_.th_low || best.dist >= ratio * best.dist2) continue;
+    const size_t j = static_cast<size_t>(best.idx);
+    if (best.dist >= dist21[j]) continue;
+    if (m21[j] >= 0) m12[static_cast<size_t>(m21[j])] = -1;  // a closer f1 keypoint takes it
+    m12[i] = best.idx;
+    m21[j] = static_cast<int>(i);
+    dist21[j] = best.dist;
+  }
+  if (o_.check_orientation) {
+    for (size_t i = 0; i < f1.size(); ++i)
+      if (m12[i] >= 0)
+        hist.add(f1.keypoints[i].angle, f2.keypoints[static_cast<size_t>(m12[i])].angle, static_cast<int>(i));
+    for (int i : hist.rejected()) m12[static_cast<size_t>(i)] = -1;
+  }
+  for (size_t i = 0; i < f1.size(); ++i)
+    if (m12[i] >= 0) prior[i] = f2.points[static_cast<size_t>(m12[i])];
+  return m12;
+}
+
 std::vector<std::pair<int, int>> OrbMatcher::search_for_triangulation(const KeyFrame& kf1, const KeyFrame& kf2) const {
   const FrameFeatures& f1 = kf1.features();
   const FrameFeatures& f2 = kf2.features();

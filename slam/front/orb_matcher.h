@@ -41,6 +41,11 @@ class OrbMatcher {
   int search_by_projection(Frame& current, const std::vector<ProjectionCandidate>& candidates, double radius) const;
   // Brute-force 2-NN between the keyframe's points and all frame features (ratio + rotation check).
   int search_by_knn(const KeyFrame& keyframe, Frame& frame) const;
+  // Monocular initialisation: each level-0/1 keypoint of f1 matched to f2's keypoints of its level within
+  // `window` px of `prior[i]` (where it was found last time; f1's position at first), distance <=
+  // th_low, ratio `ratio`, rotation check. Returns f2's index per f1 keypoint (-1: none); updates prior.
+  std::vector<int> search_for_initialisation(const FrameFeatures& f1, const FrameFeatures& f2,
+                                             std::vector<Eigen::Vector2d>& prior, double window, double ratio) const;
   // Pairs (i1, i2) of unmatched keypoints of two keyframes satisfying the epipolar constraint.
   std::vector<std::pair<int, int>> search_for_triangulation(const KeyFrame& kf1, const KeyFrame& kf2) const;
   // Projects `points` into `kf`; merges each with the point already there or adds the observation.

@@ -34,6 +34,13 @@ void Submap::erase_keyframe(const std::shared_ptr<KeyFrame>& kf) {
   keyframes_.erase(kf->id());
 }
 
+void Submap::clear() {
+  for (auto& [id, mp] : map_points_) mp->set_bad();
+  map_points_.clear();
+  keyframes_.clear();
+  origin_.reset();
+}
+
 void Submap::purge_bad_points() {
   for (auto it = map_points_.begin(); it != map_points_.end();) {
     if (it->second->bad()) {

@@ -32,6 +32,8 @@ class Submap {
   void erase_map_point(const std::shared_ptr<MapPoint>& mp);
   // Culls a keyframe: it leaves the graph and its points; its pose is kept relative to its parent.
   void erase_keyframe(const std::shared_ptr<KeyFrame>& kf);
+  // Drops every keyframe and point (a failed initialisation starts over in the same submap).
+  void clear();
   // Forgets points that became bad elsewhere (no observations left, replaced).
   void purge_bad_points();
 

@@ -1,9 +1,13 @@
 #include "slam/front/tracker.h"
 
+#include <algorithm>
+
 #include "slam/front/keyframe_policy.h"
+#include "slam/front/local_bundle_adjustment.h"
 #include "slam/front/local_map.h"
 #include "slam/front/rgbd_points.h"
 #include "slam/front/submap.h"
+#include "slam/front/two_view.h"
 
 namespace wardmap::slam {
 
@@ -25,6 +29,10 @@ Tracker::Tracker(const FrontOptions& options, const PinholeCamera& camera, Local
   pose_options_.iterations = options.tracking.pose_iterations;
   pose_options_.chi2_mono = options.tracking.chi2_mono;
   pose_options_.chi2_stereo = options.tracking.chi2_stereo;
+  if (options_.monocular) {
+    options_.tracking.motion_radius = options_.tracking.motion_radius_mono;
+    options_.tracking.keyframe_ref_ratio = options_.tracking.keyframe_ref_ratio_mono;
+  }
 }
 
 void Tracker::set_submap(std::shared_ptr<Submap> submap, const SE3& initial_pose_cw) {
@@ -36,6 +44,7 @@ void Tracker::set_submap(std::shared_ptr<Submap> submap, const SE3& initial_pose
   velocity_.reset();
   reference_.reset();
   last_keyframe_.reset();
+  init_reference_.reset();
 }
 
 TrackingOutcome Tracker::track(Frame& frame) {
@@ -87,6 +96,111 @@ TrackingOutcome Tracker::track(Frame& frame) {
 }
 
 bool Tracker::initialise(Frame& frame) {
+  return options_.monocular ? initialise_monocular(frame) : initialise_rgbd(frame);
+}
+
+bool Tracker::initialise_monocular(Frame& frame) {
+  const TrackingOptions& t = options_.tracking;
+  if (static_cast<int>(frame.size()) <= t.init_min_features) {
+    init_reference_.reset();
+    return false;
+  }
+  if (!init_reference_ || frame.id() - init_reference_->id() > static_cast<std::uint64_t>(t.init_max_frames)) {
+    init_reference_ = std::make_unique<Frame>(frame);
+    init_prior_ = frame.features().points;
+    return false;
+  }
+  const FrameFeatures& f1 = init_reference_->features();
+  const std::vector<int> m12 = matcher_.search_for_initialisation(f1, frame.features(), init_prior_, t.init_window,
+                                                                  t.init_ratio);
+  std::vector<Eigen::Vector2d> p1, p2;
+  std::vector<int> index1;
+  for (size_t i = 0; i < m12.size(); ++i) {
+    if (m12[i] < 0) continue;
+    p1.push_back(f1.points[i]);
+    p2.push_back(frame.features().points[static_cast<size_t>(m12[i])]);
+    index1.push_back(static_cast<int>(i));
+  }
+  if (static_cast<int>(p1.size()) < t.init_min_matches) {
+    init_reference_.reset();  // too few matches: the next frame becomes the reference
+    return false;
+  }
+  TwoViewOptions tv = t.two_view;
+  tv.seed = init_reference_->id() * 1000003u + frame.id();
+  const auto r = reconstruct_two_views(p1, p2, camera_, tv);
+  if (!r) return false;  // not enough parallax or ambiguous: keep the reference, try the next frame
+  // Matches re-indexed on the reference frame's keypoints, keeping only the triangulated ones.
+  std::vector<int> matches(f1.size(), -1);
+  TwoViewReconstruction rr = *r;
+  std::vector<Eigen::Vector3d> points(f1.size());
+  for (size_t k = 0; k < index1.size(); ++k) {
+    if (!r->triangulated[k]) continue;
+    matches[static_cast<size_t>(index1[k])] = m12[static_cast<size_t>(index1[k])];
+    points[static_cast<size_t>(index1[k])] = r->points[k];
+  }
+  rr.points = std::move(points);
+  const bool ok = create_initial_map(*init_reference_, frame, matches, rr);
+  init_reference_.reset();
+  return ok;
+}
+
+bool Tracker::create_initial_map(Frame& first, Frame& second, const std::vector<int>& matches12,
+                                 const TwoViewReconstruction& r) {
+  first.set_pose_cw(initial_pose_cw_);
+  second.set_pose_cw(r.T_21 * initial_pose_cw_);
+  auto kf1 = submap_->create_keyframe(first);
+  auto kf2 = submap_->create_keyframe(second);
+  const SE3 T_w1 = initial_pose_cw_.inverse();
+  for (size_t i = 0; i < matches12.size(); ++i) {
+    if (matches12[i] < 0) continue;
+    auto mp = submap_->create_map_point(T_w1 * r.points[i], *kf1);
+    mp->add_observation(kf1, static_cast<int>(i));
+    mp->add_observation(kf2, matches12[i]);
+    kf1->set_map_point(i, mp);
+    kf2->set_map_point(static_cast<size_t>(matches12[i]), mp);
+    mp->update_descriptor();
+    mp->update_normal_and_depth();
+  }
+  kf1->update_connections();
+  kf2->update_connections();
+  local_bundle_adjustment(kf2, *submap_, camera_, options_);  // the first keyframe holds the gauge
+  // Scale: the median depth of the first keyframe's points becomes 1 (ORB-SLAM's convention).
+  std::vector<double> depths;
+  for (const auto& mp : kf1->map_points())
+    if (mp && !mp->bad()) depths.push_back((kf1->pose_cw() * mp->position()).z());
+  if (depths.empty()) {
+    submap_->clear();
+    return false;
+  }
+  std::nth_element(depths.begin(), depths.begin() + static_cast<long>(depths.size() / 2), depths.end());
+  const double median = depths[depths.size() / 2];
+  if (median <= 0 || kf2->tracked_points(1) < options_.tracking.two_view.min_triangulated) {
+    submap_->clear();
+    return false;
+  }
+  const double s = 1.0 / median;
+  const SE3 T21 = kf2->pose_cw() * kf1->pose_wc();
+  kf2->set_pose_cw(SE3(T21.rotation(), s * T21.translation()) * kf1->pose_cw());
+  for (const auto& mp : kf1->map_points())
+    if (mp && !mp->bad()) mp->set_position(kf1->pose_wc() * (s * (kf1->pose_cw() * mp->position())));
+  for (const auto& mp : kf2->map_points())
+    if (mp && !mp->bad()) mp->update_normal_and_depth();
+
+  second.set_pose_cw(kf2->pose_cw());
+  std::fill(second.map_points.begin(), second.map_points.end(), nullptr);
+  std::fill(second.outlier.begin(), second.outlier.end(), 0);
+  for (size_t i = 0; i < kf2->size(); ++i)
+    if (kf2->map_point(i) && !kf2->map_point(i)->bad()) second.map_points[i] = kf2->map_point(i);
+  reference_ = last_keyframe_ = kf2;
+  last_keyframe_frame_ = second.id();
+  second.reference_keyframe = kf2;
+  mapper_.enqueue(kf1);
+  mapper_.enqueue(kf2);
+  mapper_.process_queued();
+  return true;
+}
+
+bool Tracker::initialise_rgbd(Frame& frame) {
   int with_depth = 0;
   for (size_t i = 0; i < frame.size(); ++i) with_depth += frame.features().has_depth(i) ? 1 : 0;
   if (with_depth < options_.tracking.min_init_points) return false;
@@ -182,13 +296,14 @@ KeyFrameEvidence Tracker::evidence(const Frame& frame, int inliers) const {
     else
       ++e.untracked_close;
   }
-  e.mapper_idle = mapper_.idle();
+  e.mapper_idle = mapper_.idle() && e.frames_since_keyframe > options_.mapping.inline_busy_frames;
   return e;
 }
 
 void Tracker::insert_keyframe(Frame& frame) {
   auto kf = submap_->create_keyframe(frame);
-  auto created = create_depth_points(kf, *submap_, camera_, options_.tracking);
+  std::vector<std::pair<int, std::shared_ptr<MapPoint>>> created;
+  if (!options_.monocular) created = create_depth_points(kf, *submap_, camera_, options_.tracking);
   for (const auto& [i, mp] : created) {
     frame.map_points[static_cast<size_t>(i)] = mp;
     frame.outlier[static_cast<size_t>(i)] = 0;

@@ -1,5 +1,5 @@
-// Realtime RGB-D tracking of one frame against the active submap: initialisation from the first
-// frame's depth, constant-velocity prediction + projection search of the last frame's points (fallback:
+// Realtime tracking of one frame against the active submap: initialisation from the first frame's
+// depth (RGB-D) or from two views (monocular, two_view.h), constant-velocity prediction + projection search of the last frame's points (fallback:
 // brute-force matching against the reference keyframe), local-map tracking (RUMI Formula 5) with
 // pose-only optimisation, and the keyframe decision. New keyframes go to the LocalMapper's queue.
 #pragma once
@@ -44,6 +44,12 @@ class Tracker {
 
  private:
   bool initialise(Frame& frame);
+  bool initialise_rgbd(Frame& frame);
+  bool initialise_monocular(Frame& frame);
+  // Builds the first two keyframes and their points from a two-view reconstruction; false (and the
+  // submap cleared) when bundle adjustment leaves too few points.
+  bool create_initial_map(Frame& first, Frame& second, const std::vector<int>& matches12,
+                          const struct TwoViewReconstruction& r);
   bool track_with_motion_model(Frame& frame);
   bool track_reference_keyframe(Frame& frame);
   bool track_local_map(Frame& frame, int& inliers);
@@ -65,6 +71,9 @@ class Tracker {
   std::uint64_t last_keyframe_frame_ = 0;
   SE3 initial_pose_cw_;
   int frames_lost_ = 0;
+  // Monocular initialisation: the first frame of the pair and where its keypoints were last matched.
+  std::unique_ptr<Frame> init_reference_;
+  std::vector<Eigen::Vector2d> init_prior_;
 };
 
 }  // namespace wardmap::slam

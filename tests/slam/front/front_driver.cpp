@@ -1,10 +1,11 @@
 // Test-only driver for measurements: runs the front-process over a sequence and writes the TUM
 // trajectory and per-frame timings. (`wardmap run` will replace it.)
-//   wardmap_front_driver <sequence> <settings.yaml> <trajectory.txt> [max_frames]
+//   [FRONT_MONO=1] [FRONT_VERBOSE=1] wardmap_front_driver <sequence> <settings.yaml> <trajectory.txt> [max_frames]
 #include <algorithm>
 #include <cstdio>
 #include <vector>
 
+#include "slam/eval/trajectory_eval.h"
 #include "slam/front/front_process.h"
 #include "slam/io/sequence.h"
 #include "slam/io/settings.h"
@@ -18,7 +19,8 @@ int main(int argc, char** argv) {
   }
   try {
     const io::Settings settings = io::load_settings(argv[2]);
-    const FrontOptions options = load_front_options(settings);
+    FrontOptions options = load_front_options(settings);
+    options.monocular = std::getenv("FRONT_MONO") != nullptr;
     io::ReaderOptions ro;
     if (settings.camera.depth_map_factor) ro.depth_factor = *settings.camera.depth_map_factor;
     auto reader = io::open_sequence(argv[1], ro);
@@ -41,6 +43,16 @@ int main(int argc, char** argv) {
     const Trajectory best = front.trajectory();
     io::write_tum(argv[3], best);
     std::printf("submaps %zu; the largest holds %zu tracked frames (written)\n", front.submaps().size(), best.size());
+    if (reader->info().has_ground_truth && best.size() >= 3) {
+      const auto& gt = reader->ground_truth();
+      const auto pairs = eval::associate(gt, best, {});
+      if (pairs.size() >= 3) {
+        const auto sim3 = eval::compute_ate(gt, best, pairs, eval::Alignment::Sim3);
+        const auto se3 = eval::compute_ate(gt, best, pairs, eval::Alignment::SE3);
+        std::printf("ATE Sim(3) %.4f m, SE(3) %.4f m over %zu poses; tracking rate %.1f %%\n", sim3.stats.rmse,
+                    se3.stats.rmse, pairs.size(), eval::tracking_rate(gt, best, {}));
+      }
+    }
     auto pct = [](std::vector<double> s, double p) {
       std::sort(s.begin(), s.end());
       return s.empty() ? 0.0 : 1e3 * s[std::min(s.size() - 1, static_cast<size_t>(p * s.size()))];
