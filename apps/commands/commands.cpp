@@ -11,6 +11,8 @@ void register_commands(CLI::App& app) {
   add_run_command(app);
   add_eval_objects_command(app);
   add_compare_command(app);
+  add_vocabulary_command(app);
+  add_render_command(app);
 }
 
 }  // namespace wardmap::apps

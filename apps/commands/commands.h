@@ -12,5 +12,7 @@ void add_eval_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_eval_objects_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
+void add_vocabulary_command(CLI::App& app);
+void add_render_command(CLI::App& app);
 
 }  // namespace wardmap::apps
