@@ -47,6 +47,7 @@ double run_slam_job(const SlamJob& job) {
   if (mode == "rgbd" && !info.has_depth)
     throw InputError(job.sequence.string(), "--mode rgbd needs depth images, and this sequence has none");
   options.monocular = mode == "mono";
+  options.mapping_thread = !job.deterministic;
   const auto& cam = settings.camera.camera;
   if (cam.width != info.width || cam.height != info.height)
     throw InputError(settings_file.string(), "calibration is for " + std::to_string(cam.width) + "x" +
@@ -55,19 +56,34 @@ double run_slam_job(const SlamJob& job) {
 
   slam::FrontProcess front(options, cam);
   std::string frames_csv = "timestamp,status,submap\n", timing_csv = "timestamp,seconds,extract_seconds,mapping_seconds\n";
-  std::vector<double> seconds;
+  std::vector<double> seconds, stamps;
+  std::vector<std::string> statuses;
+  std::vector<int> submap_of;
   char line[160];
   Progress progress("slam", reader->size(), job.progress);
   for (size_t i = 0; i < reader->size(); ++i) {
     progress.update(i + 1);
     const slam::FrameResult r = front.process(reader->read(i));
-    std::snprintf(line, sizeof line, "%.6f,%s,%d\n", r.timestamp, r.tracked ? "tracked" : "lost", r.submap);
-    frames_csv += line;
+    statuses.push_back(r.tracked ? "tracked" : r.state == slam::TrackingState::kNotInitialised ? "initialising" : "lost");
+    submap_of.push_back(r.submap);
+    stamps.push_back(r.timestamp);
+    for (double b : r.backfilled)  // localised once the monocular map existed
+      for (size_t k = stamps.size(); k-- > 0;)
+        if (stamps[k] == b) {
+          statuses[k] = "backfilled";
+          submap_of[k] = r.submap;
+          break;
+        }
     std::snprintf(line, sizeof line, "%.6f,%.6f,%.6f,%.6f\n", r.timestamp, r.seconds, r.extract_seconds, r.mapping_seconds);
     timing_csv += line;
     seconds.push_back(r.seconds);
   }
+  front.finish();
   progress.finish();
+  for (size_t k = 0; k < stamps.size(); ++k) {
+    std::snprintf(line, sizeof line, "%.6f,%s,%d\n", stamps[k], statuses[k].c_str(), submap_of[k]);
+    frames_csv += line;
+  }
 
   const slam::Trajectory traj = front.trajectory();
   json report = {{"sequence", job.sequence.string()}, {"mode", mode}, {"settings", settings_file.string()},

@@ -86,7 +86,8 @@ struct MappingOptions {
 };
 
 struct FrontOptions {
-  bool monocular = false;  // set by the caller (--mode mono), not from the settings file
+  bool monocular = false;       // set by the caller (--mode mono), not from the settings file
+  bool mapping_thread = false;  // local mapping on its own thread (set by the caller; off = deterministic)
   OrbOptions orb;
   MatcherOptions matcher;
   TrackingOptions tracking;

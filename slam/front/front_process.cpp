@@ -22,9 +22,17 @@ FrontProcess::FrontProcess(const FrontOptions& options, const PinholeCamera& cam
   submaps_.push_back(submap_);
   mapper_.set_submap(submap_);
   tracker_.set_submap(submap_);
+  if (options_.mapping_thread) mapper_.start();
 }
 
-FrontProcess::~FrontProcess() = default;
+FrontProcess::~FrontProcess() { mapper_.stop(); }
+
+void FrontProcess::finish() { mapper_.stop(); }
+
+double FrontProcess::mapping_seconds_total() const {
+  const LocalMapperStats& ms = mapper_.stats();
+  return ms.t_register + ms.t_cull + ms.t_triangulate + ms.t_fuse + ms.t_ba + ms.t_cull_keyframes;
+}
 
 FrameResult FrontProcess::process(const io::Frame& in) {
   const auto start = std::chrono::steady_clock::now();
@@ -35,32 +43,45 @@ FrameResult FrontProcess::process(const io::Frame& in) {
                                       : extractor_, camera_, options_.tracking.virtual_baseline,
                                   options_.tracking.max_depth, options_.tracking.max_depth_step));
   const auto extracted = std::chrono::steady_clock::now();
-  const LocalMapperStats& ms = mapper_.stats();
-  const double mapping_before =
-      ms.t_register + ms.t_cull + ms.t_triangulate + ms.t_fuse + ms.t_ba + ms.t_cull_keyframes;
-  const TrackingOutcome t = tracker_.track(frame);
+  const bool threaded = mapper_.threaded();
   FrameResult r;
-  r.extract_seconds = std::chrono::duration<double>(extracted - start).count();
-  r.mapping_seconds =
-      ms.t_register + ms.t_cull + ms.t_triangulate + ms.t_fuse + ms.t_ba + ms.t_cull_keyframes - mapping_before;
-  r.index = in.index;
-  r.timestamp = in.timestamp;
-  r.state = t.state;
-  r.tracked = t.tracked;
-  r.keyframe = t.keyframe;
-  r.features = static_cast<int>(frame.size());
-  r.matches = t.matches;
-  r.inliers = t.inliers;
-  r.submap = submap_->id();
-  if (t.tracked) {
-    r.T_wc = frame.pose_cw().inverse();
-    last_tracked_pose_cw_ = frame.pose_cw();
-    if (t.reference)
-      records_.push_back({in.timestamp, submap_->id(), t.reference, frame.pose_cw() * t.reference->pose_wc()});
-  } else if (t.state == TrackingState::kLost &&
-             (tracker_.frames_lost() >= options_.tracking.lost_frames_to_reset ||
-              (options_.monocular && submap_->num_keyframes() <= 5))) {
-    // A monocular map this small is not worth relocalising into (ORB-SLAM resets it): start over.
+  bool start_submap = false;
+  {
+    // Threaded mapping: the tracker holds the submap for the whole frame (the mapper takes it step
+    // by step). Inline: the mapper runs inside track() and its time is reported separately.
+    std::unique_lock<std::mutex> lock;
+    if (threaded) lock = std::unique_lock<std::mutex>(submap_->mutex());
+    const double mapping_before = threaded ? 0 : mapping_seconds_total();
+    const TrackingOutcome t = tracker_.track(frame);
+    r.extract_seconds = std::chrono::duration<double>(extracted - start).count();
+    r.mapping_seconds = threaded ? 0 : mapping_seconds_total() - mapping_before;
+    r.index = in.index;
+    r.timestamp = in.timestamp;
+    r.state = t.state;
+    r.tracked = t.tracked;
+    r.keyframe = t.keyframe;
+    r.features = static_cast<int>(frame.size());
+    r.matches = t.matches;
+    r.inliers = t.inliers;
+    r.submap = submap_->id();
+    if (t.tracked) {
+      r.T_wc = frame.pose_cw().inverse();
+      last_tracked_pose_cw_ = frame.pose_cw();
+      if (t.reference) {
+        for (const auto& b : t.backfilled) {
+          records_.push_back({b.timestamp, submap_->id(), b.reference, b.T_cw * b.reference->pose_wc()});
+          r.backfilled.push_back(b.timestamp);
+        }
+        records_.push_back({in.timestamp, submap_->id(), t.reference, frame.pose_cw() * t.reference->pose_wc()});
+      }
+    } else if (t.state == TrackingState::kLost) {
+      // A monocular map this small is not worth relocalising into (ORB-SLAM resets it): start over.
+      start_submap = tracker_.frames_lost() >= options_.tracking.lost_frames_to_reset ||
+                     (options_.monocular && submap_->num_keyframes() <= 5);
+    }
+  }
+  if (start_submap) {
+    mapper_.wait_idle();  // the mapper finishes the old submap's keyframes first
     submap_ = std::make_shared<Submap>(static_cast<int>(submaps_.size()), ids_);
     submaps_.push_back(submap_);
     mapper_.set_submap(submap_);

@@ -31,9 +31,11 @@ struct FrameResult {
   int inliers = 0;
   int submap = 0;              // id of the submap the frame was tracked in
   bool new_submap = false;     // tracking was lost too long: a new submap starts with the next frame
+  // Monocular initialisation: timestamps of the earlier frames localised once the map existed.
+  std::vector<double> backfilled;
   double seconds = 0;          // wall time spent on this frame (extraction, tracking, inline mapping)
   double extract_seconds = 0;  // of which ORB extraction
-  double mapping_seconds = 0;  // of which local mapping run inline (keyframes only)
+  double mapping_seconds = 0;  // of which local mapping run inline (keyframes only; 0 when threaded)
 };
 
 class FrontProcess {
@@ -45,6 +47,9 @@ class FrontProcess {
 
   // Tracks one frame (grey or BGR image, CV_32F depth in metres).
   FrameResult process(const io::Frame& frame);
+  // Ends the run: with options.mapping_thread, maps the queued keyframes and stops the mapper. Call it
+  // before reading the trajectory, submaps or mapper statistics of a threaded run.
+  void finish();
   // Camera-to-world poses of the frames tracked in the submap holding most frames (the whole run
   // when it never lost track), with the current keyframe poses.
   Trajectory trajectory() const;
@@ -73,6 +78,8 @@ class FrontProcess {
   std::vector<std::shared_ptr<Submap>> submaps_;
   LocalMapper mapper_;
   Tracker tracker_;
+  double mapping_seconds_total() const;
+
   std::vector<Record> records_;
   std::uint64_t next_frame_id_ = 0;
   SE3 last_tracked_pose_cw_;

@@ -3,6 +3,7 @@
 namespace wardmap::slam {
 
 bool need_new_keyframe(const KeyFrameEvidence& e, const TrackingOptions& o) {
+  if (e.mapper_queue_full) return false;
   const double ref_ratio = e.keyframes_in_map < 2 ? 0.4 : o.keyframe_ref_ratio;
   const bool need_close = e.tracked_close < o.keyframe_close_tracked && e.untracked_close > o.keyframe_close_untracked;
   const bool too_long = e.frames_since_keyframe >= o.keyframe_max_frames;

@@ -15,6 +15,7 @@ struct KeyFrameEvidence {
   int tracked_close = 0;    // close keypoints with a matched point
   int untracked_close = 0;  // close keypoints without one
   bool mapper_idle = true;
+  bool mapper_queue_full = false;  // then no keyframe: the queue must not grow without bound
 };
 
 bool need_new_keyframe(const KeyFrameEvidence& e, const TrackingOptions& options);

@@ -23,7 +23,8 @@ struct BAObservation {
 }  // namespace
 
 LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe, Submap& submap,
-                                      const PinholeCamera& camera, const FrontOptions& options) {
+                                      const PinholeCamera& camera, const FrontOptions& options,
+                                      std::unique_lock<std::mutex>* lock) {
   LocalBAResult result;
   const MappingOptions& m = options.mapping;
   // Local keyframes and points.
@@ -154,14 +155,17 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
     return outliers;
   };
 
+  // From here to the write-back only copies and the (immutable) keyframe features are read.
+  if (lock) lock->unlock();
   if (m.ba_iterations_robust > 0) solve(true, m.ba_iterations_robust);
   classify();
   if (m.ba_iterations_refine > 0) solve(false, m.ba_iterations_refine);
   result.outliers = classify();
+  if (lock) lock->lock();
 
   // Write back.
   for (const auto& kf : local)
-    if (!constant.count(kf->id())) kf->set_pose_cw(pose_of(kf->id()));
+    if (!constant.count(kf->id()) && !kf->bad()) kf->set_pose_cw(pose_of(kf->id()));
   for (size_t i = 0; i < observations.size(); ++i) {
     if (inlier[i]) continue;
     const BAObservation& o = observations[i];

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
 
 #include "slam/core/camera.h"
 #include "slam/front/front_options.h"
@@ -23,7 +24,10 @@ struct LocalBAResult {
   double initial_cost = 0, final_cost = 0;
 };
 
+// `lock`, when given, holds the submap's mutex: it is released while Ceres solves (the problem works on
+// copies of the poses and positions) and taken again to write the results back.
 LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe, Submap& submap,
-                                      const PinholeCamera& camera, const FrontOptions& options);
+                                      const PinholeCamera& camera, const FrontOptions& options,
+                                      std::unique_lock<std::mutex>* lock = nullptr);
 
 }  // namespace wardmap::slam

@@ -16,23 +16,69 @@ LocalMapper::LocalMapper(const FrontOptions& options, const PinholeCamera& camer
       matcher_(options.matcher, camera),
       queue_(static_cast<size_t>(options.mapping.queue_capacity)) {}
 
+LocalMapper::~LocalMapper() { stop(); }
+
+void LocalMapper::start() {
+  if (worker_.joinable()) return;
+  worker_ = std::thread([this] { run(); });
+}
+
+void LocalMapper::stop() {
+  if (!worker_.joinable()) return;
+  queue_.close();
+  worker_.join();
+}
+
+void LocalMapper::run() {
+  while (auto kf = queue_.pop()) {
+    busy_ = true;
+    process(*kf);
+    {
+      std::lock_guard<std::mutex> lock(idle_mutex_);
+      busy_ = false;
+    }
+    idle_cv_.notify_all();
+  }
+  idle_cv_.notify_all();
+}
+
+void LocalMapper::wait_idle() {
+  if (!worker_.joinable()) {
+    process_queued();
+    return;
+  }
+  std::unique_lock<std::mutex> lock(idle_mutex_);
+  idle_cv_.wait(lock, [this] { return queue_.empty() && !busy_; });
+}
+
 void LocalMapper::set_submap(std::shared_ptr<Submap> submap) {
   submap_ = std::move(submap);
   recent_points_.clear();
 }
 
 void LocalMapper::process_queued() {
+  if (worker_.joinable()) return;
   while (auto kf = queue_.try_pop()) process(*kf);
 }
 
 void LocalMapper::process(const std::shared_ptr<KeyFrame>& kf) {
-  if (!submap_ || kf->bad()) return;
+  if (!submap_) return;
+  // Threaded: hold the submap's lock step by step (the tracker holds it for a whole frame) and let
+  // the tracker in between steps. Inline: the caller already is the tracker.
+  std::unique_lock<std::mutex> lock;
+  if (worker_.joinable()) lock = std::unique_lock<std::mutex>(submap_->mutex());
+  if (kf->bad()) return;
   kf->not_erase = true;
   auto t0 = std::chrono::steady_clock::now();
-  auto lap = [&t0](double& total) {
+  auto lap = [&t0, &lock](double& total) {
     const auto t1 = std::chrono::steady_clock::now();
     total += std::chrono::duration<double>(t1 - t0).count();
-    t0 = t1;
+    if (lock.owns_lock()) {
+      lock.unlock();
+      std::this_thread::yield();
+      lock.lock();
+    }
+    t0 = std::chrono::steady_clock::now();
   };
   register_keyframe(kf);
   lap(stats_.t_register);
@@ -42,7 +88,8 @@ void LocalMapper::process(const std::shared_ptr<KeyFrame>& kf) {
   lap(stats_.t_triangulate);
   fuse_with_neighbours(kf);
   lap(stats_.t_fuse);
-  if (submap_->num_keyframes() > 2) stats_.last_ba = local_bundle_adjustment(kf, *submap_, camera_, options_);
+  if (submap_->num_keyframes() > 2)
+    stats_.last_ba = local_bundle_adjustment(kf, *submap_, camera_, options_, lock.owns_lock() ? &lock : nullptr);
   lap(stats_.t_ba);
   if (options_.mapping.keyframe_culling) cull_keyframes(kf);
   lap(stats_.t_cull_keyframes);

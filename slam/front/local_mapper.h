@@ -1,12 +1,17 @@
 // Local mapping: takes the tracker's new keyframes from a bounded queue and, for each, registers its
 // observations, culls unreliable recent points, triangulates new points with covisible keyframes,
 // fuses duplicates with the neighbours, runs local bundle adjustment and culls redundant keyframes.
-// This milestone drains the queue on the caller's thread (process_queued), which is also the
-// deterministic mode; a worker thread only needs to call process_queued under the submap's lock.
+// Two modes: inline (process_queued drains the queue on the caller's thread: deterministic), or a
+// worker thread (start/stop) that maps each keyframe holding the submap's lock step by step and
+// releasing it while bundle adjustment solves, so that tracking goes on meanwhile.
 #pragma once
 
+#include <atomic>
+#include <condition_variable>
 #include <list>
 #include <memory>
+#include <mutex>
+#include <thread>
 
 #include "slam/core/camera.h"
 #include "slam/front/bounded_queue.h"
@@ -33,14 +38,27 @@ struct LocalMapperStats {
 class LocalMapper {
  public:
   LocalMapper(const FrontOptions& options, const PinholeCamera& camera);
+  ~LocalMapper();
+  LocalMapper(const LocalMapper&) = delete;
+  LocalMapper& operator=(const LocalMapper&) = delete;
 
+  // Call only while idle (inline, or after wait_idle()).
   void set_submap(std::shared_ptr<Submap> submap);
   // False when the queue is full: the tracker then keeps tracking and tries again later.
   bool enqueue(std::shared_ptr<KeyFrame> keyframe) { return queue_.try_push(std::move(keyframe)); }
-  bool idle() const { return queue_.empty(); }
-  // Maps every queued keyframe.
+  bool idle() const { return queue_.empty() && !busy_; }
+  bool queue_full() const { return queue_.size() >= static_cast<size_t>(options_.mapping.queue_capacity); }
+  size_t queued() const { return queue_.size(); }
+  // Inline mode: maps every queued keyframe. Threaded mode: does nothing (the worker does it).
   void process_queued();
+  // Worker thread: start() once; stop() maps what is queued, then joins. wait_idle() blocks until
+  // the queue is empty and no keyframe is being mapped.
+  void start();
+  void stop();
+  void wait_idle();
+  bool threaded() const { return worker_.joinable(); }
   void process(const std::shared_ptr<KeyFrame>& keyframe);
+  // Read only when idle or stopped in threaded mode.
   const LocalMapperStats& stats() const { return stats_; }
 
  private:
@@ -49,6 +67,7 @@ class LocalMapper {
   void triangulate_with_neighbours(const std::shared_ptr<KeyFrame>& kf);
   void fuse_with_neighbours(const std::shared_ptr<KeyFrame>& kf);
   void cull_keyframes(const std::shared_ptr<KeyFrame>& kf);
+  void run();
 
   FrontOptions options_;
   PinholeCamera camera_;
@@ -57,6 +76,10 @@ class LocalMapper {
   BoundedQueue<std::shared_ptr<KeyFrame>> queue_;
   std::list<std::shared_ptr<MapPoint>> recent_points_;
   LocalMapperStats stats_;
+  std::thread worker_;
+  std::atomic<bool> busy_{false};
+  std::mutex idle_mutex_;
+  std::condition_variable idle_cv_;
 };
 
 }  // namespace wardmap::slam

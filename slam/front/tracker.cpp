@@ -54,6 +54,8 @@ TrackingOutcome Tracker::track(Frame& frame) {
       state_ = TrackingState::kTracking;
       out.tracked = out.keyframe = true;
       out.inliers = frame.count_matches();
+      out.backfilled = std::move(backfilled_);
+      backfilled_.clear();
     }
     out.state = state_;
     out.reference = reference_;
@@ -108,6 +110,7 @@ bool Tracker::initialise_monocular(Frame& frame) {
   if (!init_reference_ || frame.id() - init_reference_->id() > static_cast<std::uint64_t>(t.init_max_frames)) {
     init_reference_ = std::make_unique<Frame>(frame);
     init_prior_ = frame.features().points;
+    init_window_.clear();
     return false;
   }
   const FrameFeatures& f1 = init_reference_->features();
@@ -128,7 +131,10 @@ bool Tracker::initialise_monocular(Frame& frame) {
   TwoViewOptions tv = t.two_view;
   tv.seed = init_reference_->id() * 1000003u + frame.id();
   const auto r = reconstruct_two_views(p1, p2, camera_, tv);
-  if (!r) return false;  // not enough parallax or ambiguous: keep the reference, try the next frame
+  if (!r) {  // not enough parallax or ambiguous: keep the reference, try the next frame
+    init_window_.push_back(frame);
+    return false;
+  }
   // Matches re-indexed on the reference frame's keypoints, keeping only the triangulated ones.
   std::vector<int> matches(f1.size(), -1);
   TwoViewReconstruction rr = *r;
@@ -140,8 +146,44 @@ bool Tracker::initialise_monocular(Frame& frame) {
   }
   rr.points = std::move(points);
   const bool ok = create_initial_map(*init_reference_, frame, matches, rr);
+  if (ok) {
+    const auto kfs = submap_->recent_keyframes(2);  // newest first
+    backfilled_ = backfill_initialisation_window(kfs[1], kfs[0]);
+  }
   init_reference_.reset();
+  init_window_.clear();
   return ok;
+}
+
+std::vector<TrackingOutcome::Backfilled> Tracker::backfill_initialisation_window(const std::shared_ptr<KeyFrame>& k1,
+                                                                                const std::shared_ptr<KeyFrame>& k2) {
+  const KeyFrame &kf1 = *k1, &kf2 = *k2;
+  std::vector<TrackingOutcome::Backfilled> out{{kf1.timestamp(), kf1.pose_cw(), k1}};
+  std::vector<std::shared_ptr<MapPoint>> points;
+  for (const auto& [id, mp] : submap_->map_points())
+    if (!mp->bad()) points.push_back(mp);
+  const double span = kf2.timestamp() - kf1.timestamp();
+  for (Frame& f : init_window_) {
+    // Start from the pose interpolated between the two keyframes, then track against the new map.
+    const double s = span > 0 ? (f.timestamp() - kf1.timestamp()) / span : 0.5;
+    f.set_pose_cw(SE3::interpolate(kf1.pose_cw(), kf2.pose_cw(), s));
+    std::fill(f.map_points.begin(), f.map_points.end(), nullptr);
+    std::fill(f.outlier.begin(), f.outlier.end(), 0);
+    const auto candidates = visible_candidates(f, points, camera_);
+    matcher_.search_by_projection(f, candidates, 2 * options_.tracking.local_map_radius);
+    int inliers = optimise_frame_pose(f);
+    if (inliers < options_.tracking.min_local_map_inliers) continue;
+    // A second pass from the refined pose catches the points the interpolated pose missed.
+    std::fill(f.map_points.begin(), f.map_points.end(), nullptr);
+    std::fill(f.outlier.begin(), f.outlier.end(), 0);
+    matcher_.search_by_projection(f, visible_candidates(f, points, camera_), options_.tracking.local_map_radius);
+    inliers = optimise_frame_pose(f);
+    if (inliers < options_.tracking.min_local_map_inliers) continue;
+    for (size_t i = 0; i < f.size(); ++i)
+      if (f.map_points[i] && !f.outlier[i]) f.map_points[i]->increase_found();
+    out.push_back({f.timestamp(), f.pose_cw(), s < 0.5 ? k1 : k2});
+  }
+  return out;
 }
 
 bool Tracker::create_initial_map(Frame& first, Frame& second, const std::vector<int>& matches12,
@@ -296,7 +338,9 @@ KeyFrameEvidence Tracker::evidence(const Frame& frame, int inliers) const {
     else
       ++e.untracked_close;
   }
-  e.mapper_idle = mapper_.idle() && e.frames_since_keyframe > options_.mapping.inline_busy_frames;
+  e.mapper_idle = mapper_.idle() &&
+                  (mapper_.threaded() || e.frames_since_keyframe > options_.mapping.inline_busy_frames);
+  e.mapper_queue_full = mapper_.queue_full();
   return e;
 }
 

@@ -29,6 +29,14 @@ struct TrackingOutcome {
   int matches = 0;        // after motion / reference tracking
   int inliers = 0;        // after local-map tracking
   std::shared_ptr<KeyFrame> reference;
+  // Monocular initialisation: the earlier frames of the initialisation window (the reference frame
+  // and those between), localised against the new map once it exists.
+  struct Backfilled {
+    double timestamp;
+    SE3 T_cw;
+    std::shared_ptr<KeyFrame> reference;  // the initial keyframe nearer in time
+  };
+  std::vector<Backfilled> backfilled;
 };
 
 class Tracker {
@@ -74,6 +82,10 @@ class Tracker {
   // Monocular initialisation: the first frame of the pair and where its keypoints were last matched.
   std::unique_ptr<Frame> init_reference_;
   std::vector<Eigen::Vector2d> init_prior_;
+  std::vector<Frame> init_window_;  // the frames since init_reference_ (for backfilling)
+  std::vector<TrackingOutcome::Backfilled> backfilled_;
+  std::vector<TrackingOutcome::Backfilled> backfill_initialisation_window(const std::shared_ptr<KeyFrame>& kf1,
+                                                                         const std::shared_ptr<KeyFrame>& kf2);
 };
 
 }  // namespace wardmap::slam

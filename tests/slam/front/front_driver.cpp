@@ -1,6 +1,6 @@
 // Test-only driver for measurements: runs the front-process over a sequence and writes the TUM
 // trajectory and per-frame timings. (`wardmap run` will replace it.)
-//   [FRONT_MONO=1] [FRONT_VERBOSE=1] wardmap_front_driver <sequence> <settings.yaml> <trajectory.txt> [max_frames]
+//   [FRONT_MONO=1] [FRONT_THREAD=1] [FRONT_VERBOSE=1] wardmap_front_driver <sequence> <settings.yaml> <trajectory.txt> [max_frames]
 #include <algorithm>
 #include <cstdio>
 #include <vector>
@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
     const io::Settings settings = io::load_settings(argv[2]);
     FrontOptions options = load_front_options(settings);
     options.monocular = std::getenv("FRONT_MONO") != nullptr;
+    options.mapping_thread = std::getenv("FRONT_THREAD") != nullptr;
     io::ReaderOptions ro;
     if (settings.camera.depth_map_factor) ro.depth_factor = *settings.camera.depth_map_factor;
     auto reader = io::open_sequence(argv[1], ro);
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
         std::printf("%zu %s kf=%d feat=%d matches=%d inliers=%d %.1f ms\n", i, to_string(r.state), r.keyframe,
                     r.features, r.matches, r.inliers, 1e3 * r.seconds);
     }
+    front.finish();
     const Trajectory best = front.trajectory();
     io::write_tum(argv[3], best);
     std::printf("submaps %zu; the largest holds %zu tracked frames (written)\n", front.submaps().size(), best.size());
