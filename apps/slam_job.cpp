@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 
 #include "apps/progress.h"
@@ -14,6 +15,7 @@
 #include "slam/io/settings.h"
 #include "slam/io/text_file.h"
 #include "slam/io/trajectory_io.h"
+#include "slam/place/vocabulary.h"
 
 namespace wardmap::apps {
 
@@ -29,6 +31,21 @@ double percentile(std::vector<double> v, double q) {
 }
 
 }  // namespace
+
+fs::path find_vocabulary(const fs::path& given) {
+  if (!given.empty()) {
+    if (!fs::exists(given)) throw InputError(given.string(), "vocabulary file not found");
+    return given;
+  }
+  if (const char* env = std::getenv("WARDMAP_VOCABULARY"); env && *env) {
+    if (!fs::exists(env)) throw InputError(env, "vocabulary file (WARDMAP_VOCABULARY) not found");
+    return env;
+  }
+  for (const fs::path& p : {fs::path(WARDMAP_SOURCE_DIR) / "data/vocabulary/orb-k10l4.bin",
+                            fs::path("data/vocabulary/orb-k10l4.bin")})
+    if (fs::exists(p)) return p;
+  return {};
+}
 
 double run_slam_job(const SlamJob& job) {
   fs::path settings_file = job.settings;
@@ -55,6 +72,12 @@ double run_slam_job(const SlamJob& job) {
                                                  std::to_string(info.width) + "x" + std::to_string(info.height));
 
   slam::FrontProcess front(options, cam);
+  const fs::path vocabulary_file = find_vocabulary(job.vocabulary);
+  if (vocabulary_file.empty())
+    spdlog::warn("no place-recognition vocabulary found (give --vocabulary or set WARDMAP_VOCABULARY): "
+                 "no relocalisation, a lost track starts a new submap");
+  else
+    front.set_vocabulary(std::make_shared<const slam::place::Vocabulary>(slam::place::Vocabulary::load(vocabulary_file)));
   std::string frames_csv = "timestamp,status,submap\n", timing_csv = "timestamp,seconds,extract_seconds,mapping_seconds\n";
   std::vector<double> seconds, stamps;
   std::vector<std::string> statuses;
@@ -64,7 +87,10 @@ double run_slam_job(const SlamJob& job) {
   for (size_t i = 0; i < reader->size(); ++i) {
     progress.update(i + 1);
     const slam::FrameResult r = front.process(reader->read(i));
-    statuses.push_back(r.tracked ? "tracked" : r.state == slam::TrackingState::kNotInitialised ? "initialising" : "lost");
+    statuses.push_back(r.relocalised ? "relocalised"
+                       : r.tracked ? "tracked"
+                       : r.state == slam::TrackingState::kNotInitialised ? "initialising"
+                                                                         : "lost");
     submap_of.push_back(r.submap);
     stamps.push_back(r.timestamp);
     for (double b : r.backfilled)  // localised once the monocular map existed

@@ -15,10 +15,15 @@ struct SlamJob {
   std::filesystem::path out;
   std::string mode;  // "rgbd", "mono", or empty: rgbd when the sequence has depth, else mono
   bool progress = true;
-  bool deterministic = false;  // local mapping on the tracking thread: identical output on reruns
+  bool deterministic = false;
+  std::filesystem::path vocabulary;  // empty: $WARDMAP_VOCABULARY, then data/vocabulary/orb-k10l4.bin  // local mapping on the tracking thread: identical output on reruns
   // When set, the semantic layer maps the objects on the final map's keyframes.
   const SemanticJob* objects = nullptr;
 };
+
+// The place-recognition vocabulary: `given`, else $WARDMAP_VOCABULARY, else the project's shipped one;
+// empty when none is found. Throws InputError when a named file is missing.
+std::filesystem::path find_vocabulary(const std::filesystem::path& given);
 
 // Returns the tracking rate (%) when the sequence has ground truth, else -1.
 double run_slam_job(const SlamJob& job);

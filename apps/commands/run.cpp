@@ -21,12 +21,13 @@ struct RunArgs {
   std::string mode;  // empty: rgbd when the sequence has depth, else mono
   bool deterministic = false;
   bool objects = false;
+  std::filesystem::path vocabulary;
 };
 
 void run(RunArgs& a) {
   if (a.poses == "slam") {
     spdlog::info("run: {} (SLAM front-process{})", a.job.sequence.string(), a.mode.empty() ? "" : ", " + a.mode);
-    SlamJob s{a.job.sequence, a.job.settings, a.job.out, a.mode, a.job.progress, a.deterministic,
+    SlamJob s{a.job.sequence, a.job.settings, a.job.out, a.mode, a.job.progress, a.deterministic, a.vocabulary,
               a.objects ? &a.job : nullptr};
     run_slam_job(s);
     return;
@@ -81,6 +82,8 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--association", a->job.association, "Object association: hierarchical (the paper) or hdp-only (HDP-SLAM baseline)")
       ->capture_default_str()
       ->check(CLI::IsMember({"hierarchical", "hdp-only"}));
+  cmd->add_option("--vocabulary", a->vocabulary, "Place-recognition vocabulary for relocalisation (default: "
+                                                 "$WARDMAP_VOCABULARY, then data/vocabulary/orb-k10l4.bin)");
   cmd->add_flag("--objects", a->objects, "With --poses slam: also map the objects on the SLAM's keyframes (needs --out)");
   cmd->add_flag("--deterministic", a->deterministic, "Byte-identical output on reruns: local mapping runs on the tracking thread instead of its own");
   add_semantic_options(cmd, a->job);

@@ -49,6 +49,10 @@ void FrontOptions::validate(const std::filesystem::path& file) const {
   check_range(t.init_window, 1.0, 2000.0, "tracking.init_window", file);
   check_range(t.init_ratio, 0.1, 1.0, "tracking.init_ratio", file);
   check_range(t.init_max_frames, 1, 100000, "tracking.init_max_frames", file);
+  check_range(t.reloc_candidates, 1, 1000, "tracking.reloc_candidates", file);
+  check_range(t.reloc_min_matches, 6, 100000, "tracking.reloc_min_matches", file);
+  check_range(t.reloc_pnp_error, 0.5, 100.0, "tracking.reloc_pnp_error", file);
+  check_range(t.reloc_min_inliers, 6, 100000, "tracking.reloc_min_inliers", file);
   const TwoViewOptions& v = t.two_view;
   check_range(v.ransac_iterations, 1, 100000, "tracking.init_ransac_iterations", file);
   check_range(v.sigma, 0.1, 10.0, "tracking.init_sigma", file);
@@ -136,6 +140,10 @@ FrontOptions load_front_options(const io::Settings& settings) {
   read_option(t, ts, "init_window", k.init_window, f);
   read_option(t, ts, "init_ratio", k.init_ratio, f);
   read_option(t, ts, "init_max_frames", k.init_max_frames, f);
+  read_option(t, ts, "reloc_candidates", k.reloc_candidates, f);
+  read_option(t, ts, "reloc_min_matches", k.reloc_min_matches, f);
+  read_option(t, ts, "reloc_pnp_error", k.reloc_pnp_error, f);
+  read_option(t, ts, "reloc_min_inliers", k.reloc_min_inliers, f);
   read_option(t, ts, "init_ransac_iterations", k.two_view.ransac_iterations, f);
   read_option(t, ts, "init_sigma", k.two_view.sigma, f);
   read_option(t, ts, "init_homography_share", k.two_view.homography_share, f);

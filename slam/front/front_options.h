@@ -61,6 +61,11 @@ struct TrackingOptions {
   double init_ratio = 0.9;              // tracking.init_ratio: best / second best distance
   int init_max_frames = 30;             // tracking.init_max_frames: a reference older than this is replaced
   TwoViewOptions two_view;              // tracking.init_*: H / F model selection and triangulation
+  // Relocalisation (needs a vocabulary): candidates by bag of words, then PnP RANSAC.
+  int reloc_candidates = 10;            // tracking.reloc_candidates: keyframes tried per lost frame
+  int reloc_min_matches = 15;           // tracking.reloc_min_matches: descriptor matches to try PnP
+  double reloc_pnp_error = 4.0;         // tracking.reloc_pnp_error (px): RANSAC reprojection threshold
+  int reloc_min_inliers = 50;           // tracking.reloc_min_inliers: after pose optimisation
 };
 
 struct MappingOptions {

@@ -60,6 +60,7 @@ FrameResult FrontProcess::process(const io::Frame& in) {
     r.state = t.state;
     r.tracked = t.tracked;
     r.keyframe = t.keyframe;
+    r.relocalised = t.relocalised;
     r.features = static_cast<int>(frame.size());
     r.matches = t.matches;
     r.inliers = t.inliers;

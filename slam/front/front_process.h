@@ -25,6 +25,7 @@ struct FrameResult {
   TrackingState state = TrackingState::kNotInitialised;
   bool tracked = false;
   bool keyframe = false;
+  bool relocalised = false;  // found again by place recognition after being lost
   SE3 T_wc;  // camera-to-world at the time of tracking (meaningful when tracked)
   int features = 0;
   int matches = 0;
@@ -45,6 +46,8 @@ class FrontProcess {
   FrontProcess(const FrontProcess&) = delete;
   FrontProcess& operator=(const FrontProcess&) = delete;
 
+  // Enables relocalisation by place recognition (call before the first frame).
+  void set_vocabulary(std::shared_ptr<const place::Vocabulary> vocabulary) { tracker_.set_vocabulary(std::move(vocabulary)); }
   // Tracks one frame (grey or BGR image, CV_32F depth in metres).
   FrameResult process(const io::Frame& frame);
   // Ends the run: with options.mapping_thread, maps the queued keyframes and stops the mapper. Call it

@@ -11,6 +11,7 @@
 #include "slam/core/se3.h"
 #include "slam/front/frame.h"
 #include "slam/front/map_point.h"
+#include "slam/place/vocabulary.h"
 
 namespace wardmap::slam {
 
@@ -66,6 +67,8 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   const SE3& pose_relative_to_parent() const { return T_cp_; }
 
   bool not_erase = false;  // set while another module relies on it (e.g. the mapper's current keyframe)
+  // Bag of words (empty without a vocabulary), for relocalisation; set once by the tracker.
+  place::BowVector bow;
 
  private:
   struct Connection {

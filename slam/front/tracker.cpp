@@ -1,6 +1,8 @@
 #include "slam/front/tracker.h"
 
 #include <algorithm>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core/eigen.hpp>
 
 #include "slam/front/keyframe_policy.h"
 #include "slam/front/local_bundle_adjustment.h"
@@ -45,6 +47,7 @@ void Tracker::set_submap(std::shared_ptr<Submap> submap, const SE3& initial_pose
   reference_.reset();
   last_keyframe_.reset();
   init_reference_.reset();
+  place_database_.clear();
 }
 
 TrackingOutcome Tracker::track(Frame& frame) {
@@ -67,8 +70,10 @@ TrackingOutcome Tracker::track(Frame& frame) {
   if (state_ == TrackingState::kTracking) {
     ok = velocity_ && track_with_motion_model(frame);
     if (!ok) ok = track_reference_keyframe(frame);
+  } else if (vocabulary_) {
+    ok = out.relocalised = relocalise(frame);
   } else {
-    // Lost: try the latest keyframe from the last known pose (no place recognition yet).
+    // Lost without a vocabulary: try the latest keyframe from the last known pose.
     frame.set_pose_cw(last_frame_->pose_cw());
     ok = track_reference_keyframe(frame);
   }
@@ -77,6 +82,7 @@ TrackingOutcome Tracker::track(Frame& frame) {
     frame.reference_keyframe = reference_;
     ok = track_local_map(frame, out.inliers);
   }
+  out.relocalised = out.relocalised && ok;
   state_ = ok ? TrackingState::kTracking : TrackingState::kLost;
   frames_lost_ = ok ? 0 : frames_lost_ + 1;
   out.state = state_;
@@ -233,6 +239,8 @@ bool Tracker::create_initial_map(Frame& first, Frame& second, const std::vector<
   std::fill(second.outlier.begin(), second.outlier.end(), 0);
   for (size_t i = 0; i < kf2->size(); ++i)
     if (kf2->map_point(i) && !kf2->map_point(i)->bad()) second.map_points[i] = kf2->map_point(i);
+  add_to_place_database(kf1);
+  add_to_place_database(kf2);
   reference_ = last_keyframe_ = kf2;
   last_keyframe_frame_ = second.id();
   second.reference_keyframe = kf2;
@@ -250,6 +258,7 @@ bool Tracker::initialise_rgbd(Frame& frame) {
   auto kf = submap_->create_keyframe(frame);
   auto created = create_depth_points(kf, *submap_, camera_, options_.tracking);
   for (const auto& [i, mp] : created) frame.map_points[static_cast<size_t>(i)] = mp;
+  add_to_place_database(kf);
   reference_ = last_keyframe_ = kf;
   last_keyframe_frame_ = frame.id();
   frame.reference_keyframe = kf;
@@ -352,11 +361,82 @@ void Tracker::insert_keyframe(Frame& frame) {
     frame.map_points[static_cast<size_t>(i)] = mp;
     frame.outlier[static_cast<size_t>(i)] = 0;
   }
+  add_to_place_database(kf);
   reference_ = last_keyframe_ = kf;
   last_keyframe_frame_ = frame.id();
   frame.reference_keyframe = kf;
   if (!mapper_.enqueue(kf)) return;  // mapper saturated: the keyframe still serves as reference
   mapper_.process_queued();          // inline mapping in this milestone
+}
+
+void Tracker::add_to_place_database(const std::shared_ptr<KeyFrame>& kf) {
+  if (!vocabulary_) return;
+  kf->bow = vocabulary_->transform(kf->features().descriptors);
+  place_database_.add(kf->id(), kf->bow);
+}
+
+bool Tracker::relocalise(Frame& frame) {
+  const TrackingOptions& t = options_.tracking;
+  if (place_database_.size() == 0 || frame.size() == 0) return false;
+  const place::BowVector bow = vocabulary_->transform(frame.features().descriptors);
+  const auto candidates = place_database_.query(bow, static_cast<size_t>(t.reloc_candidates));
+  const FrameFeatures& f = frame.features();
+  cv::Mat K = (cv::Mat_<double>(3, 3) << camera_.fx, 0, camera_.cx, 0, camera_.fy, camera_.cy, 0, 0, 1);
+  for (const auto& c : candidates) {
+    const auto it = submap_->keyframes().find(c.id);
+    if (it == submap_->keyframes().end() || it->second->bad()) continue;  // culled since
+    const std::shared_ptr<KeyFrame>& kf = it->second;
+    std::fill(frame.map_points.begin(), frame.map_points.end(), nullptr);
+    std::fill(frame.outlier.begin(), frame.outlier.end(), 0);
+    if (matcher_.search_by_knn(*kf, frame) < t.reloc_min_matches) continue;
+    std::vector<cv::Point3d> object;
+    std::vector<cv::Point2d> image;
+    std::vector<size_t> slot;
+    for (size_t i = 0; i < frame.size(); ++i) {
+      const auto& mp = frame.map_points[i];
+      if (!mp || mp->bad()) continue;
+      object.emplace_back(mp->position().x(), mp->position().y(), mp->position().z());
+      image.emplace_back(f.points[i].x(), f.points[i].y());
+      slot.push_back(i);
+    }
+    if (static_cast<int>(object.size()) < t.reloc_min_matches) continue;
+    cv::Mat rvec, tvec;
+    std::vector<int> inliers;
+    if (!cv::solvePnPRansac(object, image, K, cv::noArray(), rvec, tvec, false, 300,
+                            static_cast<float>(t.reloc_pnp_error), 0.99, inliers, cv::SOLVEPNP_EPNP) ||
+        inliers.size() < 10)
+      continue;
+    std::vector<char> keep(slot.size(), 0);
+    for (int k : inliers) keep[static_cast<size_t>(k)] = 1;
+    for (size_t k = 0; k < slot.size(); ++k)
+      if (!keep[k]) frame.map_points[slot[k]].reset();
+    cv::Mat R;
+    cv::Rodrigues(rvec, R);
+    Eigen::Matrix3d Re;
+    Eigen::Vector3d te;
+    cv::cv2eigen(R, Re);
+    cv::cv2eigen(tvec, te);
+    frame.set_pose_cw(SE3(Re, te));
+    int good = optimise_frame_pose(frame);
+    frame.drop_outliers();
+    if (good < t.reloc_min_inliers) {
+      // More matches by projecting the candidate's points from the PnP pose.
+      std::vector<std::shared_ptr<MapPoint>> points;
+      for (const auto& mp : kf->map_points())
+        if (mp && !mp->bad()) points.push_back(mp);
+      for (const auto& mp : frame.map_points)
+        if (mp) mp->track_frame_id = frame.id();
+      matcher_.search_by_projection(frame, visible_candidates(frame, points, camera_), 10.0);
+      good = optimise_frame_pose(frame);
+      frame.drop_outliers();
+    }
+    if (good >= t.reloc_min_inliers) {
+      reference_ = kf;
+      return true;
+    }
+  }
+  std::fill(frame.map_points.begin(), frame.map_points.end(), nullptr);
+  return false;
 }
 
 }  // namespace wardmap::slam

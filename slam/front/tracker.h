@@ -14,6 +14,8 @@
 #include "slam/front/local_mapper.h"
 #include "slam/front/orb_matcher.h"
 #include "slam/front/pose_optimizer.h"
+#include "slam/place/keyframe_database.h"
+#include "slam/place/vocabulary.h"
 
 namespace wardmap::slam {
 
@@ -26,6 +28,7 @@ struct TrackingOutcome {
   TrackingState state = TrackingState::kNotInitialised;
   bool tracked = false;   // the frame has a pose in the submap
   bool keyframe = false;  // a keyframe was made from it
+  bool relocalised = false;  // tracking was lost and found again by place recognition
   int matches = 0;        // after motion / reference tracking
   int inliers = 0;        // after local-map tracking
   std::shared_ptr<KeyFrame> reference;
@@ -43,6 +46,8 @@ class Tracker {
  public:
   Tracker(const FrontOptions& options, const PinholeCamera& camera, LocalMapper& mapper);
 
+  // Enables relocalisation by place recognition (bags of words of every keyframe from now on).
+  void set_vocabulary(std::shared_ptr<const place::Vocabulary> vocabulary) { vocabulary_ = std::move(vocabulary); }
   // Starts over on `submap`: the next frame with enough depth initialises it at `initial_pose_cw`.
   void set_submap(std::shared_ptr<Submap> submap, const SE3& initial_pose_cw = SE3());
   TrackingOutcome track(Frame& frame);
@@ -61,6 +66,10 @@ class Tracker {
   bool track_with_motion_model(Frame& frame);
   bool track_reference_keyframe(Frame& frame);
   bool track_local_map(Frame& frame, int& inliers);
+  // Lost: candidate keyframes of the submap by bag of words, descriptor matching, PnP RANSAC, pose
+  // optimisation (ORB-SLAM's Relocalization). True with the frame's pose and matches set.
+  bool relocalise(Frame& frame);
+  void add_to_place_database(const std::shared_ptr<KeyFrame>& kf);
   int optimise_frame_pose(Frame& frame);  // returns inliers; flags outliers
   void insert_keyframe(Frame& frame);
   KeyFrameEvidence evidence(const Frame& frame, int inliers) const;
@@ -84,6 +93,8 @@ class Tracker {
   std::vector<Eigen::Vector2d> init_prior_;
   std::vector<Frame> init_window_;  // the frames since init_reference_ (for backfilling)
   std::vector<TrackingOutcome::Backfilled> backfilled_;
+  std::shared_ptr<const place::Vocabulary> vocabulary_;
+  place::KeyframeDatabase place_database_;
   std::vector<TrackingOutcome::Backfilled> backfill_initialisation_window(const std::shared_ptr<KeyFrame>& kf1,
                                                                          const std::shared_ptr<KeyFrame>& kf2);
 };

@@ -9,6 +9,7 @@
 #include "slam/eval/trajectory_eval.h"
 #include "slam/io/sequence.h"
 #include "slam/io/settings.h"
+#include "slam/place/vocabulary.h"
 #include "tests/support/test_support.h"
 
 namespace wardmap::slam {
@@ -81,6 +82,58 @@ TEST(FrontProcess, TracksASyntheticRgbdAisle) {
   EXPECT_TRUE(new_submap);
   EXPECT_EQ(front.submaps().size(), 2u);
   EXPECT_EQ(front.trajectory().size(), 90u);
+}
+
+// Lost for a few blind frames, then shown an earlier part of the aisle: the motion model cannot
+// help, place recognition finds the keyframes and tracking continues in the same submap.
+TEST(FrontProcess, RelocalisesInTheSameSubmapAfterBlindFrames) {
+  const fs::path bin = wardmap_binary();
+  if (!fs::exists(bin)) GTEST_SKIP() << "wardmap executable not built: " << bin;
+  const fs::path seq = test::scratch_dir() / "aisle_reloc";
+  std::string log;
+  ASSERT_EQ(test::run_command(bin.string() + " synth --scenario aisle_straight --variant slow --seed 2 --frames 90 --out " +
+                                  seq.string(),
+                              &log),
+            0)
+      << log;
+  const io::Settings settings = io::load_settings(seq / "settings.yaml");
+  const FrontOptions options = load_front_options(settings);
+  io::ReaderOptions ro;
+  ro.depth_factor = settings.camera.depth_map_factor;
+  auto reader = io::open_sequence(seq, ro);
+  FrontProcess front(options, settings.camera.camera);
+  front.set_vocabulary(std::make_shared<const place::Vocabulary>(
+      place::Vocabulary::load(test::source_dir() / "data/vocabulary/orb-k10l4.bin")));
+  for (size_t i = 0; i < 90; ++i) ASSERT_TRUE(front.process(reader->read(i)).tracked) << "frame " << i;
+  io::Frame blind = reader->read(89);
+  blind.image.setTo(0);
+  blind.depth.setTo(0);
+  double t = blind.timestamp;
+  for (int k = 0; k < 3; ++k) {
+    blind.timestamp = t += 1.0 / 30;
+    EXPECT_FALSE(front.process(blind).tracked);
+  }
+  // Back to frame 30: 2 s earlier along the aisle, 0.3 m or more from the last pose.
+  int relocalised = 0, tracked = 0;
+  for (size_t i = 30; i < 50; ++i) {
+    io::Frame f = reader->read(i);
+    f.timestamp = t += 1.0 / 30;
+    const FrameResult r = front.process(f);
+    relocalised += r.relocalised ? 1 : 0;
+    tracked += r.tracked ? 1 : 0;
+    if (i == 30) EXPECT_TRUE(r.relocalised) << to_string(r.state);
+    EXPECT_EQ(r.submap, 0);
+    if (r.tracked) {
+      const SE3 T_wc_gt = reader->ground_truth().poses[i];
+      const SE3 T_wc_0 = reader->ground_truth().poses[0];
+      // The first frame's pose is the map origin: compare relative to it.
+      const Eigen::Vector3d expected = (T_wc_0.inverse() * T_wc_gt).translation();
+      EXPECT_LT((r.T_wc.translation() - expected).norm(), 0.05) << "frame " << i;
+    }
+  }
+  EXPECT_EQ(relocalised, 1);
+  EXPECT_EQ(tracked, 20);
+  EXPECT_EQ(front.submaps().size(), 1u);
 }
 
 }  // namespace wardmap::slam
