@@ -129,13 +129,18 @@ double run_slam_job(const SlamJob& job) {
     const auto pairs = slam::eval::associate(gt, traj, {});
     rate = slam::eval::tracking_rate(gt, traj, {});
     if (pairs.size() >= 3) {
-      const auto ate = slam::eval::compute_ate(gt, traj, pairs, slam::eval::Alignment::SE3);
-      report["ate_se3"] = {{"rmse", ate.stats.rmse}, {"mean", ate.stats.mean}, {"median", ate.stats.median},
-                           {"max", ate.stats.max}, {"pairs", pairs.size()}};
-      std::snprintf(buf, sizeof buf, "- ATE (SE(3)) RMSE %.4f m, median %.4f m, max %.4f m over %zu poses\n", ate.stats.rmse,
-                    ate.stats.median, ate.stats.max, pairs.size());
+      // Monocular maps have no metric scale: Sim(3) alignment (EVALUATION.md); RGB-D: SE(3).
+      const bool mono = mode == "mono";
+      const char* name = mono ? "Sim(3)" : "SE(3)";
+      const auto ate =
+          slam::eval::compute_ate(gt, traj, pairs, mono ? slam::eval::Alignment::Sim3 : slam::eval::Alignment::SE3);
+      report[mono ? "ate_sim3" : "ate_se3"] = {{"rmse", ate.stats.rmse}, {"mean", ate.stats.mean},
+                                              {"median", ate.stats.median}, {"max", ate.stats.max},
+                                              {"pairs", pairs.size()}};
+      std::snprintf(buf, sizeof buf, "- ATE (%s) RMSE %.4f m, median %.4f m, max %.4f m over %zu poses\n", name,
+                    ate.stats.rmse, ate.stats.median, ate.stats.max, pairs.size());
       md += buf;
-      std::printf("ATE (SE(3)) RMSE %.4f m over %zu poses\n", ate.stats.rmse, pairs.size());
+      std::printf("ATE (%s) RMSE %.4f m over %zu poses\n", name, ate.stats.rmse, pairs.size());
     }
     report["tracking_rate"] = rate;
     std::snprintf(buf, sizeof buf, "- tracking rate %.1f %%\n", rate);

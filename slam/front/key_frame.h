@@ -69,6 +69,7 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   bool not_erase = false;  // set while another module relies on it (e.g. the mapper's current keyframe)
   // Bag of words (empty without a vocabulary), for relocalisation; set once by the tracker.
   place::BowVector bow;
+  place::FeatureVector feature_vector;  // direct index (features per vocabulary node), for guided matching
 
  private:
   struct Connection {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 
 #include "slam/front/quadtree_distribution.h"
@@ -30,7 +31,9 @@ OrbExtractor::OrbExtractor(const OrbOptions& options)
   for (int dv = 0; dv <= kHalfPatch; ++dv)
     circle_half_width_.push_back(static_cast<int>(std::floor(std::sqrt(kHalfPatch * kHalfPatch - dv * dv) + 0.5)));
 
-  descriptor_ = cv::ORB::create(options.n_features, static_cast<float>(options.scale_factor), options.n_levels,
+  // Descriptors are computed level by level on this extractor's own pyramid (one level per call), so
+  // cv::ORB neither rebuilds the pyramid nor resizes: about half its cost.
+  descriptor_ = cv::ORB::create(std::numeric_limits<int>::max() / 2, static_cast<float>(options.scale_factor), 1,
                                 options.edge_threshold, 0, 2, cv::ORB::HARRIS_SCORE, kPatchSize, options.min_th_fast);
 }
 
@@ -115,29 +118,36 @@ OrbFeatures OrbExtractor::extract(const cv::Mat& grey) const {
   CV_Assert(grey.type() == CV_8UC1);
   const std::vector<cv::Mat> levels = build_pyramid(grey);
   OrbFeatures out;
+  std::vector<cv::Mat> descriptors;
   for (int l = 0; l < options_.n_levels; ++l) {
     std::vector<cv::KeyPoint> kps = detect_level(levels[static_cast<size_t>(l)], l);
+    if (kps.empty()) continue;
+    // cv::ORB (one level) keeps the given angles; it may drop keypoints near the border, so the
+    // survivors are re-identified by class_id. It reads octave 0 and the patch size at level scale.
+    for (size_t i = 0; i < kps.size(); ++i) {
+      kps[i].class_id = static_cast<int>(i);
+      kps[i].octave = 0;
+      kps[i].size = static_cast<float>(kPatchSize);
+    }
+    cv::Mat desc;
+    descriptor_->compute(levels[static_cast<size_t>(l)], kps, desc);
     const float s = static_cast<float>(pyramid_.scale[static_cast<size_t>(l)]);
     for (cv::KeyPoint& k : kps) {
       // To level-0 pixels; cv::resize maps pixel centres, so x0 = (x_l + 0.5) s - 0.5.
       k.pt.x = (k.pt.x + 0.5f) * s - 0.5f;
       k.pt.y = (k.pt.y + 0.5f) * s - 0.5f;
+      k.octave = l;
+      k.size = kPatchSize * s;
       k.class_id = static_cast<int>(out.keypoints.size());
       out.keypoints.push_back(k);
     }
+    descriptors.push_back(desc);
   }
   if (out.keypoints.empty()) {
     out.descriptors = cv::Mat(0, 32, CV_8U);
     return out;
   }
-  // cv::ORB keeps the provided keypoints' angles and octaves; it may drop keypoints near the border,
-  // so the survivors are re-identified by class_id.
-  std::vector<cv::KeyPoint> kps = out.keypoints;
-  cv::Mat desc;
-  descriptor_->compute(grey, kps, desc);
-  out.keypoints = kps;
-  for (size_t i = 0; i < out.keypoints.size(); ++i) out.keypoints[i].class_id = static_cast<int>(i);
-  out.descriptors = desc;
+  cv::vconcat(descriptors, out.descriptors);
   return out;
 }
 

@@ -192,21 +192,27 @@ std::vector<std::pair<int, int>> OrbMatcher::search_for_triangulation(const KeyF
   const bool epipole_valid = c1_in_2.z() > 1e-9;
   const Eigen::Vector2d epipole = epipole_valid ? project_pinhole(camera_, c1_in_2) : Eigen::Vector2d(-1e9, -1e9);
 
-  std::vector<int> free2;
-  for (size_t j = 0; j < kf2.size(); ++j)
-    if (!kf2.map_point(j) || kf2.map_point(j)->bad()) free2.push_back(static_cast<int>(j));
+  std::vector<char> free2(kf2.size(), 0);
+  for (size_t j = 0; j < kf2.size(); ++j) free2[j] = !kf2.map_point(j) || kf2.map_point(j)->bad();
   std::vector<int> best_for2(kf2.size(), -1), best_dist2(kf2.size(), INT_MAX);
   RotationHistogram hist(o_.histogram_bins);
   std::vector<int> match12(kf1.size(), -1);
-  for (size_t i = 0; i < kf1.size(); ++i) {
-    if (kf1.map_point(i) && !kf1.map_point(i)->bad()) continue;
+  // Candidates of each keypoint of kf1: kf2's keypoints under the same vocabulary node (ORB-SLAM's
+  // bag-of-words guided search) when both keyframes have a direct index, else all of them.
+  const bool guided = !kf1.feature_vector.empty() && !kf2.feature_vector.empty();
+  std::vector<int> all2;
+  if (!guided)
+    for (size_t j = 0; j < kf2.size(); ++j) all2.push_back(static_cast<int>(j));
+  auto match_one = [&](size_t i, const std::vector<int>& candidates) {
+    if (kf1.map_point(i) && !kf1.map_point(i)->bad()) return;
     const Eigen::Vector3d x1(f1.points[i].x(), f1.points[i].y(), 1.0);
     const Eigen::Vector3d line = F21 * x1;
     const double norm2 = line.head<2>().squaredNorm();
-    if (norm2 < 1e-12) continue;
+    if (norm2 < 1e-12) return;
     Best best;
-    for (int j : free2) {
+    for (int j : candidates) {
       const size_t js = static_cast<size_t>(j);
+      if (!free2[js]) continue;
       const int d = descriptor_distance(f1.descriptor(i), f2.descriptor(js));
       if (d > o_.th_low || d > best.dist) continue;
       const Eigen::Vector2d& p2 = f2.points[js];
@@ -217,8 +223,8 @@ std::vector<std::pair<int, int>> OrbMatcher::search_for_triangulation(const KeyF
       if (dist2 > 3.84 * f2.pyramid->sigma2[static_cast<size_t>(f2.levels[js])]) continue;
       best.offer(d, j, f2.levels[js]);
     }
-    if (best.idx < 0) continue;
-    if (best.dist2 != INT_MAX && best.dist > o_.ratio_knn * best.dist2) continue;
+    if (best.idx < 0) return;
+    if (best.dist2 != INT_MAX && best.dist > o_.ratio_knn * best.dist2) return;
     const size_t j = static_cast<size_t>(best.idx);
     if (best.dist < best_dist2[j]) {
       if (best_for2[j] >= 0) match12[static_cast<size_t>(best_for2[j])] = -1;
@@ -226,6 +232,22 @@ std::vector<std::pair<int, int>> OrbMatcher::search_for_triangulation(const KeyF
       best_dist2[j] = best.dist;
       match12[i] = best.idx;
     }
+  };
+  if (guided) {
+    auto it1 = kf1.feature_vector.begin(), it2 = kf2.feature_vector.begin();
+    while (it1 != kf1.feature_vector.end() && it2 != kf2.feature_vector.end()) {
+      if (it1->first < it2->first) {
+        ++it1;
+      } else if (it2->first < it1->first) {
+        ++it2;
+      } else {
+        for (int i : it1->second) match_one(static_cast<size_t>(i), it2->second);
+        ++it1;
+        ++it2;
+      }
+    }
+  } else {
+    for (size_t i = 0; i < kf1.size(); ++i) match_one(i, all2);
   }
   for (size_t i = 0; i < match12.size(); ++i)
     if (match12[i] >= 0 && o_.check_orientation)

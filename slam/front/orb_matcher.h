@@ -46,7 +46,8 @@ class OrbMatcher {
   // th_low, ratio `ratio`, rotation check. Returns f2's index per f1 keypoint (-1: none); updates prior.
   std::vector<int> search_for_initialisation(const FrameFeatures& f1, const FrameFeatures& f2,
                                              std::vector<Eigen::Vector2d>& prior, double window, double ratio) const;
-  // Pairs (i1, i2) of unmatched keypoints of two keyframes satisfying the epipolar constraint.
+  // Pairs (i1, i2) of unmatched keypoints of two keyframes satisfying the epipolar constraint (among
+  // the keypoints under the same vocabulary node when both keyframes have a direct index).
   std::vector<std::pair<int, int>> search_for_triangulation(const KeyFrame& kf1, const KeyFrame& kf2) const;
   // Projects `points` into `kf`; merges each with the point already there or adds the observation.
   // `chi2` gates the reprojection error. Returns the number of fused points.

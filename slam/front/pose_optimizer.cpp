@@ -6,6 +6,7 @@
 
 namespace wardmap::slam {
 
+
 double observation_chi2(const SE3& T_cw, const PoseObservation& o, const PinholeCamera& c, double bf) {
   const Eigen::Vector3d pc = T_cw * o.point;
   if (pc.z() <= 1e-6) return std::numeric_limits<double>::infinity();
@@ -29,37 +30,33 @@ PoseEstimate optimize_pose(const SE3& initial, const std::vector<PoseObservation
   const PinholeIntrinsics K{camera.fx, camera.fy, camera.cx, camera.cy, bf};
 
   for (int round = 0; round < options.rounds; ++round) {
-    Eigen::Quaterniond q = est.T_cw.rotation().normalized();
-    double qv[4] = {q.x(), q.y(), q.z(), q.w()};
-    double tv[3] = {est.T_cw.translation().x(), est.T_cw.translation().y(), est.T_cw.translation().z()};
-    ceres::Problem::Options po;
-    po.manifold_ownership = ceres::TAKE_OWNERSHIP;
-    ceres::Problem problem(po);
-    problem.AddParameterBlock(qv, 4, new ceres::EigenQuaternionManifold());
-    problem.AddParameterBlock(tv, 3);
+    double delta[6] = {0, 0, 0, 0, 0, 0};
+    ceres::Problem problem;
+    problem.AddParameterBlock(delta, 6);
     const bool robust = round < options.robust_rounds;
     int used = 0;
     for (size_t i = 0; i < obs.size(); ++i) {
       if (!est.inlier[i]) continue;
       const PoseObservation& o = obs[i];
       const bool stereo = o.right_u >= 0;
-      ceres::CostFunction* cost =
-          stereo ? PoseReprojectionCost<true>::create(K, o.point, o.pixel, o.right_u, o.inv_sigma)
-                 : PoseReprojectionCost<false>::create(K, o.point, o.pixel, o.right_u, o.inv_sigma);
+      ceres::CostFunction* cost = stereo ? static_cast<ceres::CostFunction*>(new PosePerturbationCost<3>(K, est.T_cw, o))
+                                         : new PosePerturbationCost<2>(K, est.T_cw, o);
       ceres::LossFunction* loss =
           robust ? new ceres::HuberLoss(std::sqrt(stereo ? options.chi2_stereo : options.chi2_mono)) : nullptr;
-      problem.AddResidualBlock(cost, loss, qv, tv);
+      problem.AddResidualBlock(cost, loss, delta);
       ++used;
     }
     if (used < 3) break;
     ceres::Solver::Options so;
-    so.linear_solver_type = ceres::DENSE_QR;
+    so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
     so.max_num_iterations = options.iterations;
     so.logging_type = ceres::SILENT;
     so.num_threads = 1;
     ceres::Solver::Summary summary;
     ceres::Solve(so, &problem, &summary);
-    est.T_cw = SE3(Eigen::Quaterniond(qv[3], qv[0], qv[1], qv[2]).normalized(), Eigen::Vector3d(tv[0], tv[1], tv[2]));
+    Vector6d d;
+    for (int i = 0; i < 6; ++i) d[i] = delta[i];
+    est.T_cw = SE3::exp(d) * est.T_cw;
 
     est.inliers = 0;
     for (size_t i = 0; i < obs.size(); ++i) {

@@ -371,7 +371,7 @@ void Tracker::insert_keyframe(Frame& frame) {
 
 void Tracker::add_to_place_database(const std::shared_ptr<KeyFrame>& kf) {
   if (!vocabulary_) return;
-  kf->bow = vocabulary_->transform(kf->features().descriptors);
+  kf->bow = vocabulary_->transform(kf->features().descriptors, &kf->feature_vector, 2);
   place_database_.add(kf->id(), kf->bow);
 }
 
