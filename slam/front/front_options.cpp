@@ -53,6 +53,8 @@ void FrontOptions::validate(const std::filesystem::path& file) const {
   check_range(t.reloc_min_matches, 6, 100000, "tracking.reloc_min_matches", file);
   check_range(t.reloc_pnp_error, 0.5, 100.0, "tracking.reloc_pnp_error", file);
   check_range(t.reloc_min_inliers, 6, 100000, "tracking.reloc_min_inliers", file);
+  check_range(t.reloc_max_speed, 0.0, 1000.0, "tracking.reloc_max_speed", file);
+  check_range(t.reloc_distance_margin, 0.0, 1e6, "tracking.reloc_distance_margin", file);
   const TwoViewOptions& v = t.two_view;
   check_range(v.ransac_iterations, 1, 100000, "tracking.init_ransac_iterations", file);
   check_range(v.sigma, 0.1, 10.0, "tracking.init_sigma", file);
@@ -76,6 +78,7 @@ void FrontOptions::validate(const std::filesystem::path& file) const {
   check_range(m.redundant_ratio, 0.0, 1.0, "mapping.redundant_ratio", file);
   check_range(m.redundant_observers, 1, 100, "mapping.redundant_observers", file);
   check_range(m.inline_busy_frames, 0, 1000, "mapping.inline_busy_frames", file);
+  check_range(m.max_lag_frames, 0, 100000, "mapping.max_lag_frames", file);
   check_range(m.triangulation_neighbours_mono, 0, 100, "mapping.triangulation_neighbours_mono", file);
   check_range(m.recent_min_observations_mono, 1, 100, "mapping.recent_min_observations_mono", file);
   check_range(m.min_baseline_depth_ratio, 0.0, 1.0, "mapping.min_baseline_depth_ratio", file);
@@ -144,6 +147,8 @@ FrontOptions load_front_options(const io::Settings& settings) {
   read_option(t, ts, "reloc_min_matches", k.reloc_min_matches, f);
   read_option(t, ts, "reloc_pnp_error", k.reloc_pnp_error, f);
   read_option(t, ts, "reloc_min_inliers", k.reloc_min_inliers, f);
+  read_option(t, ts, "reloc_max_speed", k.reloc_max_speed, f);
+  read_option(t, ts, "reloc_distance_margin", k.reloc_distance_margin, f);
   read_option(t, ts, "init_ransac_iterations", k.two_view.ransac_iterations, f);
   read_option(t, ts, "init_sigma", k.two_view.sigma, f);
   read_option(t, ts, "init_homography_share", k.two_view.homography_share, f);
@@ -169,6 +174,7 @@ FrontOptions load_front_options(const io::Settings& settings) {
   read_option(m, ms, "redundant_observers", p.redundant_observers, f);
   read_option(m, ms, "keyframe_culling", p.keyframe_culling, f);
   read_option(m, ms, "inline_busy_frames", p.inline_busy_frames, f);
+  read_option(m, ms, "max_lag_frames", p.max_lag_frames, f);
   read_option(m, ms, "triangulation_neighbours_mono", p.triangulation_neighbours_mono, f);
   read_option(m, ms, "recent_min_observations_mono", p.recent_min_observations_mono, f);
   read_option(m, ms, "min_baseline_depth_ratio", p.min_baseline_depth_ratio, f);

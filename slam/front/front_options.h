@@ -49,7 +49,7 @@ struct TrackingOptions {
   int keyframe_max_frames = 10;        // tracking.keyframe_max_frames: insert at least this often
   double keyframe_ref_ratio = 0.75;    // tracking.keyframe_ref_ratio: tracked / reference-keyframe points
   int keyframe_close_tracked = 100;    // tracking.keyframe_close_tracked
-  int keyframe_close_untracked = 100;  // tracking.keyframe_close_untracked
+  int keyframe_close_untracked = 70;   // tracking.keyframe_close_untracked (ORB-SLAM: 70)
   int min_depth_points = 100;          // tracking.min_depth_points: new close points per keyframe
   int lost_frames_to_reset = 15;       // tracking.lost_frames_to_reset: lost this long, start a new submap
   // Monocular (ORB-SLAM's values where the sensor changes them).
@@ -66,6 +66,8 @@ struct TrackingOptions {
   int reloc_min_matches = 15;           // tracking.reloc_min_matches: descriptor matches to try PnP
   double reloc_pnp_error = 4.0;         // tracking.reloc_pnp_error (px): RANSAC reprojection threshold
   int reloc_min_inliers = 50;           // tracking.reloc_min_inliers: after pose optimisation
+  double reloc_max_speed = 2.0;         // tracking.reloc_max_speed (m/s, RGB-D): farther is a look-alike
+  double reloc_distance_margin = 0.5;   // tracking.reloc_distance_margin (m, RGB-D)
 };
 
 struct MappingOptions {
@@ -85,6 +87,9 @@ struct MappingOptions {
   // With the mapper on the tracking thread it is always idle when the tracker asks; it then counts
   // as busy for this many frames after each keyframe, as a mapper thread would be.
   int inline_busy_frames = 2;              // mapping.inline_busy_frames
+  // Threaded: the tracker waits for the mapper when a keyframe is still being mapped this many frames
+  // after it was made (offline input arrives faster than a camera's; the map must keep up).
+  int max_lag_frames = 3;                  // mapping.max_lag_frames
   int triangulation_neighbours_mono = 20;  // mapping.triangulation_neighbours_mono
   int recent_min_observations_mono = 2;    // mapping.recent_min_observations_mono
   double min_baseline_depth_ratio = 0.01;  // mapping.min_baseline_depth_ratio: monocular triangulation

@@ -44,6 +44,8 @@ FrameResult FrontProcess::process(const io::Frame& in) {
                                   options_.tracking.max_depth, options_.tracking.max_depth_step));
   const auto extracted = std::chrono::steady_clock::now();
   const bool threaded = mapper_.threaded();
+  if (threaded && frames_since_keyframe_ >= options_.mapping.max_lag_frames && !mapper_.idle()) mapper_.wait_idle();
+  ++frames_since_keyframe_;
   FrameResult r;
   bool start_submap = false;
   {
@@ -61,6 +63,7 @@ FrameResult FrontProcess::process(const io::Frame& in) {
     r.tracked = t.tracked;
     r.keyframe = t.keyframe;
     r.relocalised = t.relocalised;
+    if (t.keyframe) frames_since_keyframe_ = 0;
     r.features = static_cast<int>(frame.size());
     r.matches = t.matches;
     r.inliers = t.inliers;

@@ -86,6 +86,7 @@ class FrontProcess {
 
   std::vector<Record> records_;
   std::uint64_t next_frame_id_ = 0;
+  int frames_since_keyframe_ = 0;
   SE3 last_tracked_pose_cw_;
 };
 

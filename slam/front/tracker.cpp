@@ -73,9 +73,9 @@ TrackingOutcome Tracker::track(Frame& frame) {
   } else if (vocabulary_) {
     ok = out.relocalised = relocalise(frame);
   } else {
-    // Lost without a vocabulary: try the latest keyframe from the last known pose.
+    // Lost without a vocabulary: the latest keyframe from the last known pose.
     frame.set_pose_cw(last_frame_->pose_cw());
-    ok = track_reference_keyframe(frame);
+    ok = track_reference_keyframe(frame) && plausible_recovery(frame);
   }
   out.matches = frame.count_matches();
   if (ok) {
@@ -375,6 +375,15 @@ void Tracker::add_to_place_database(const std::shared_ptr<KeyFrame>& kf) {
   place_database_.add(kf->id(), kf->bow);
 }
 
+bool Tracker::plausible_recovery(const Frame& frame) const {
+  // With metric depth, a place farther than the camera can have moved since it was last tracked is
+  // a look-alike (repeated doors and walls), not the camera's place.
+  if (options_.monocular || !last_frame_) return true;
+  const double dt = frame.timestamp() - last_frame_->timestamp();
+  const double moved = (frame.camera_center() - last_frame_->camera_center()).norm();
+  return moved <= options_.tracking.reloc_max_speed * dt + options_.tracking.reloc_distance_margin;
+}
+
 bool Tracker::relocalise(Frame& frame) {
   const TrackingOptions& t = options_.tracking;
   if (place_database_.size() == 0 || frame.size() == 0) return false;
@@ -430,10 +439,9 @@ bool Tracker::relocalise(Frame& frame) {
       good = optimise_frame_pose(frame);
       frame.drop_outliers();
     }
-    if (good >= t.reloc_min_inliers) {
-      reference_ = kf;
-      return true;
-    }
+    if (good < t.reloc_min_inliers || !plausible_recovery(frame)) continue;
+    reference_ = kf;
+    return true;
   }
   std::fill(frame.map_points.begin(), frame.map_points.end(), nullptr);
   return false;

@@ -69,6 +69,9 @@ class Tracker {
   // Lost: candidate keyframes of the submap by bag of words, descriptor matching, PnP RANSAC, pose
   // optimisation (ORB-SLAM's Relocalization). True with the frame's pose and matches set.
   bool relocalise(Frame& frame);
+  // RGB-D: the recovered pose lies within reach of the last tracked one (reloc_max_speed x time +
+  // reloc_distance_margin). Monocular maps have no metric scale: always true.
+  bool plausible_recovery(const Frame& frame) const;
   void add_to_place_database(const std::shared_ptr<KeyFrame>& kf);
   int optimise_frame_pose(Frame& frame);  // returns inliers; flags outliers
   void insert_keyframe(Frame& frame);

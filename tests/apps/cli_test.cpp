@@ -144,3 +144,57 @@ TEST(CliPipeline, SlamThenObjectsOnASyntheticWard) {
 
 }  // namespace
 }  // namespace wardmap::test
+
+namespace wardmap::test {
+namespace {
+
+std::string read_all(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+double report_number(const fs::path& report, const std::string& key) {
+  const std::string s = read_all(report);
+  const size_t at = s.find("\"" + key + "\"");
+  if (at == std::string::npos) return -1;
+  const size_t rmse = s.find("\"rmse\":", at);
+  return rmse == std::string::npos ? -1 : std::stod(s.substr(rmse + 7));
+}
+
+// Monocular SLAM end to end on a short synthetic aisle: two-view initialisation, tracking, the
+// initialisation window backfilled; ATE (Sim(3)) from the run's report. Run twice with
+// --deterministic: the outputs are byte-identical.
+TEST(CliPipeline, MonocularRunIsAccurateAndDeterministic) {
+  const fs::path dir = scratch_dir();
+  ASSERT_EQ(wardmap_cli("-q synth --scenario aisle_left_turn --variant slow --frames 150 --out " + shq(dir / "seq")).code,
+            0);
+  for (const char* run : {"a", "b"}) {
+    const CliResult r =
+        wardmap_cli("-q run " + shq(dir / "seq") + " --mode mono --deterministic --out " + shq(dir / run));
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("tracking rate 100.0 %"), std::string::npos) << r.output;
+  }
+  const double ate = report_number(dir / "a" / "report.json", "ate_sim3");
+  EXPECT_GT(ate, 0);
+  EXPECT_LT(ate, 0.02) << "ATE (Sim(3)) " << ate << " m";
+  for (const char* f : {"trajectory.txt", "frames.csv", "keyframes.txt", "points.ply"})
+    EXPECT_EQ(read_all(dir / "a" / f), read_all(dir / "b" / f)) << f << " differs between two --deterministic runs";
+  EXPECT_NE(read_all(dir / "a" / "frames.csv").find(",backfilled,"), std::string::npos);
+}
+
+// RGB-D with the mapper on its own thread (the default), twice: both accurate.
+TEST(CliPipeline, ThreadedRgbdRunIsAccurate) {
+  const fs::path dir = scratch_dir();
+  ASSERT_EQ(wardmap_cli("-q synth --scenario ward --variant slow --frames 120 --out " + shq(dir / "seq")).code, 0);
+  for (const char* run : {"a", "b"}) {
+    const CliResult r = wardmap_cli("-q run " + shq(dir / "seq") + " --mode rgbd --out " + shq(dir / run));
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("tracking rate 100.0 %"), std::string::npos) << r.output;
+    const double ate = report_number(dir / run / "report.json", "ate_se3");
+    EXPECT_GT(ate, 0);
+    EXPECT_LT(ate, 0.02) << "ATE (SE(3)) " << ate << " m";
+  }
+}
+
+}  // namespace
+}  // namespace wardmap::test
