@@ -22,5 +22,6 @@ cmake -S . -B "$BUILD" "${EXTRA[@]}"
 cmake --build "$BUILD" -j"$JOBS"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
+export TSAN_OPTIONS=${TSAN_OPTIONS:-suppressions=$PWD/tests/sanitizers/tsan.supp second_deadlock_stack=1}
 cd "$BUILD"
 ctest --output-on-failure -j"$JOBS" --timeout 900

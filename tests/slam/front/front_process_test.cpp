@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 #include "slam/eval/trajectory_eval.h"
@@ -136,6 +137,40 @@ TEST(FrontProcess, RelocalisesInTheSameSubmapAfterBlindFrames) {
   EXPECT_EQ(relocalised, 1);
   EXPECT_EQ(tracked, 20);
   EXPECT_EQ(front.submaps().size(), 1u);
+}
+
+// The same aisle with local mapping on its own thread (what `wardmap run` uses); under
+// `scripts/test.sh --tsan` this is the in-process check of the tracker / mapper locking.
+TEST(FrontProcess, TracksWithTheMapperOnItsOwnThread) {
+  const fs::path bin = wardmap_binary();
+  if (!fs::exists(bin)) GTEST_SKIP() << "wardmap executable not built: " << bin;
+  const fs::path seq = test::scratch_dir() / "aisle_thread";
+  std::string log;
+  ASSERT_EQ(test::run_command(bin.string() + " synth --scenario aisle_left_turn --variant quick --seed 3 --frames 90 --out " +
+                                  seq.string(),
+                              &log),
+            0)
+      << log;
+  const io::Settings settings = io::load_settings(seq / "settings.yaml");
+  FrontOptions options = load_front_options(settings);
+  options.mapping_thread = true;
+  io::ReaderOptions ro;
+  ro.depth_factor = settings.camera.depth_map_factor;
+  auto reader = io::open_sequence(seq, ro);
+  FrontProcess front(options, settings.camera.camera);
+  size_t max_queue = 0;
+  for (size_t i = 0; i < reader->size(); ++i) {
+    EXPECT_TRUE(front.process(reader->read(i)).tracked) << "frame " << i;
+    max_queue = std::max(max_queue, front.mapper_queue_length());
+  }
+  front.finish();
+  EXPECT_LE(max_queue, static_cast<size_t>(options.mapping.queue_capacity));
+  EXPECT_GE(front.mapper_stats().keyframes, 2);
+  const Trajectory est = front.trajectory();
+  const auto pairs = eval::associate(reader->ground_truth(), est, eval::AssociationOptions{});
+  const eval::AteResult ate = eval::compute_ate(reader->ground_truth(), est, pairs, eval::Alignment::SE3);
+  EXPECT_EQ(ate.pairs, 90u);
+  EXPECT_LE(ate.stats.rmse, 0.02) << "ATE RMSE " << ate.stats.rmse << " m";
 }
 
 }  // namespace wardmap::slam
