@@ -14,6 +14,7 @@
 #include <set>
 
 #include "slam/core/errors.h"
+#include "tests/semantics/gltf_test_objects.h"
 #include "tests/support/test_support.h"
 
 namespace wardmap::semantics {
@@ -21,25 +22,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// An upright box turned by `yaw` about the world's z.
-GltfObject box(int id, const std::string& label, const Eigen::Vector3d& position, double yaw,
-               const Eigen::Vector3d& size, int measurements) {
-  GltfObject o;
-  o.id = id;
-  o.label = label;
-  o.position = position;
-  o.rotation = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ());
-  o.size = size;
-  o.measurements = measurements;
-  return o;
-}
+using test::upright_box;
 
 // 3 objects of 2 classes, a 50-pose trajectory and 2,000 points (fixed seed).
 GltfMapContent sample_content() {
   GltfMapContent c;
-  c.objects = {box(3, "door", {2.0, 1.0, 1.025}, 0.3, {0.9, 0.06, 2.05}, 12),
-               box(7, "chair", {-1.0, 2.5, 0.45}, 0.0, {0.5, 0.5, 0.9}, 5),
-               box(11, "door", {6.0, -1.0, 1.025}, -1.2, {0.9, 0.06, 2.05}, 30)};
+  c.objects = {upright_box(3, "door", {2.0, 1.0, 1.025}, 0.3, {0.9, 0.06, 2.05}, 12),
+               upright_box(7, "chair", {-1.0, 2.5, 0.45}, 0.0, {0.5, 0.5, 0.9}, 5),
+               upright_box(11, "door", {6.0, -1.0, 1.025}, -1.2, {0.9, 0.06, 2.05}, 30)};
   for (int i = 0; i < 50; ++i) c.trajectory.emplace_back(0.2 * i, 0.5 * std::sin(0.1 * i), 1.5);
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> u(-5.0, 10.0), h(0.0, 3.0);

@@ -12,6 +12,7 @@
 
 #include "semantics/export/gltf_export.h"
 #include "slam/core/errors.h"
+#include "tests/semantics/gltf_test_objects.h"
 #include "tests/apps/cli_support.h"
 
 namespace wardmap::test {
@@ -21,22 +22,12 @@ namespace fs = std::filesystem;
 using semantics::GltfMapContent;
 using semantics::GltfObject;
 
-GltfObject box(int id, const std::string& label, const Eigen::Vector3d& position, double yaw, const Eigen::Vector3d& size) {
-  GltfObject o;
-  o.id = id;
-  o.label = label;
-  o.position = position;
-  o.rotation = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ());
-  o.size = size;
-  o.measurements = 4;
-  return o;
-}
 
 // A z-up room: two doors, a bed (large top faces for the top view), a chair; a trajectory; points.
 GltfMapContent sample_map() {
   GltfMapContent c;
-  c.objects = {box(1, "door", {0.0, 3.0, 1.0}, 0.0, {1.6, 1.2, 2.0}), box(2, "door", {4.0, 3.0, 1.0}, 0.4, {1.6, 1.2, 2.0}),
-               box(3, "bed", {2.0, -1.0, 0.3}, 0.0, {1.0, 2.0, 0.6}), box(4, "chair", {-1.5, 0.0, 0.45}, 0.0, {0.5, 0.5, 0.9})};
+  c.objects = {upright_box(1, "door", {0.0, 3.0, 1.0}, 0.0, {1.6, 1.2, 2.0}), upright_box(2, "door", {4.0, 3.0, 1.0}, 0.4, {1.6, 1.2, 2.0}),
+               upright_box(3, "bed", {2.0, -1.0, 0.3}, 0.0, {1.0, 2.0, 0.6}), upright_box(4, "chair", {-1.5, 0.0, 0.45}, 0.0, {0.5, 0.5, 0.9})};
   for (int i = 0; i <= 40; ++i) c.trajectory.emplace_back(-1.0 + 0.12 * i, 1.0 + 0.3 * std::sin(0.2 * i), 1.4);
   for (int i = 0; i < 300; ++i) c.points.emplace_back(-2.0 + 0.02 * i, 4.0, 0.5 + 0.005 * i);
   return c;
