@@ -31,6 +31,7 @@ PoseEstimate optimize_pose(const SE3& initial, const std::vector<PoseObservation
 
   for (int round = 0; round < options.rounds; ++round) {
     double delta[6] = {0, 0, 0, 0, 0, 0};
+    PerturbationCache cache;
     ceres::Problem problem;
     problem.AddParameterBlock(delta, 6);
     const bool robust = round < options.robust_rounds;
@@ -39,8 +40,9 @@ PoseEstimate optimize_pose(const SE3& initial, const std::vector<PoseObservation
       if (!est.inlier[i]) continue;
       const PoseObservation& o = obs[i];
       const bool stereo = o.right_u >= 0;
-      ceres::CostFunction* cost = stereo ? static_cast<ceres::CostFunction*>(new PosePerturbationCost<3>(K, est.T_cw, o))
-                                         : new PosePerturbationCost<2>(K, est.T_cw, o);
+      ceres::CostFunction* cost =
+          stereo ? static_cast<ceres::CostFunction*>(new PosePerturbationCost<3>(K, est.T_cw, o, &cache))
+                 : new PosePerturbationCost<2>(K, est.T_cw, o, &cache);
       ceres::LossFunction* loss =
           robust ? new ceres::HuberLoss(std::sqrt(stereo ? options.chi2_stereo : options.chi2_mono)) : nullptr;
       problem.AddResidualBlock(cost, loss, delta);

@@ -7,6 +7,9 @@
 
 #include <ceres/ceres.h>
 
+#include <algorithm>
+#include <limits>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -86,16 +89,40 @@ struct ReprojectionCost : ReprojectionResidual<kStereo> {
 // perturbation, with the analytic Jacobian d(pc)/d(delta) = [I | -[pc]x] evaluated at the current
 // point (exact at delta = 0; each round restarts from delta = 0). About ten times cheaper than
 // automatic differentiation of the quaternion form, which per-frame tracking paid for.
+// exp(delta) for the delta being evaluated, computed once for all the residual blocks of one pose
+// problem (Ceres evaluates them one after another when solving on one thread).
+struct PerturbationCache {
+  double key[6] = {std::numeric_limits<double>::quiet_NaN(), 0, 0, 0, 0, 0};
+  SE3 T;
+  const SE3& at(const double* delta) {
+    if (!std::equal(delta, delta + 6, key)) {
+      std::copy(delta, delta + 6, key);
+      Vector6d d;
+      for (int i = 0; i < 6; ++i) d[i] = delta[i];
+      T = SE3::exp(d);
+    }
+    return T;
+  }
+};
+
 template <int kResiduals>
 class PosePerturbationCost : public ceres::SizedCostFunction<kResiduals, 6> {
  public:
-  PosePerturbationCost(const PinholeIntrinsics& k, const SE3& T0, const PoseObservation& o)
-      : k_(k), T0_(T0), o_(o) {}
+  // `cache` (optional, shared by the problem's blocks, single-threaded solve) avoids one exponential
+  // per block and evaluation.
+  PosePerturbationCost(const PinholeIntrinsics& k, const SE3& T0, const PoseObservation& o,
+                       PerturbationCache* cache = nullptr)
+      : k_(k), p0_(T0 * o.point), o_(o), cache_(cache) {}
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    Vector6d delta;
-    for (int i = 0; i < 6; ++i) delta[i] = parameters[0][i];
-    const Eigen::Vector3d pc = SE3::exp(delta) * (T0_ * o_.point);
+    Eigen::Vector3d pc;
+    if (cache_) {
+      pc = cache_->at(parameters[0]) * p0_;
+    } else {
+      Vector6d delta;
+      for (int i = 0; i < 6; ++i) delta[i] = parameters[0][i];
+      pc = SE3::exp(delta) * p0_;
+    }
     if (pc.z() <= 1e-9) return false;
     const double iz = 1.0 / pc.z(), s = o_.inv_sigma;
     const double u = k_.fx * pc.x() * iz + k_.cx, v = k_.fy * pc.y() * iz + k_.cy;
@@ -118,8 +145,9 @@ class PosePerturbationCost : public ceres::SizedCostFunction<kResiduals, 6> {
 
  private:
   PinholeIntrinsics k_;
-  SE3 T0_;
+  Eigen::Vector3d p0_;  // the point in the camera at T0
   PoseObservation o_;
+  PerturbationCache* cache_;
 };
 
 }  // namespace wardmap::slam
