@@ -1,4 +1,4 @@
-// The camera the unit tests share: 640x480, fx = fy = 500, principal point at the image centre, no
+// The camera the unit tests share: 640x480, fx = fy = 500 unless given, principal point at the image centre, no
 // distortion.
 #pragma once
 
@@ -6,9 +6,9 @@
 
 namespace wardmap::test {
 
-inline slam::PinholeCamera vga_camera() {
+inline slam::PinholeCamera vga_camera(double focal = 500) {
   slam::PinholeCamera c;
-  c.fx = c.fy = 500;
+  c.fx = c.fy = focal;
   c.cx = 319.5;
   c.cy = 239.5;
   c.width = 640;

@@ -4,18 +4,12 @@
 
 #include <random>
 
+#include "tests/support/test_camera.h"
+
 namespace wardmap::slam {
 
 namespace {
-PinholeCamera camera() {
-  PinholeCamera c;
-  c.fx = c.fy = 525;
-  c.cx = 319.5;
-  c.cy = 239.5;
-  c.width = 640;
-  c.height = 480;
-  return c;
-}
+PinholeCamera camera() { return test::vga_camera(525); }
 }  // namespace
 
 class PoseOptimizerTest : public ::testing::TestWithParam<bool> {};
