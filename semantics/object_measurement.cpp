@@ -39,34 +39,64 @@ Eigen::Matrix3d upright_rotation(const Eigen::Vector3d& up, const Eigen::Vector3
   return R;
 }
 
+namespace {
+
+// Whether the world point of pixel (x, y) is hidden by one of `occluders`.
+bool hidden_by(const std::vector<Occluder>& occluders, int x, int y, const Eigen::Vector3d& p_world, double inflate) {
+  for (const auto& o : occluders) {
+    const auto& b = o.box;
+    if (x < b(0) || x > b(2) || y < b(1) || y > b(3)) continue;
+    if (!o.pose) return true;
+    const Eigen::Vector3d q = o.pose->pose.inverse() * p_world;
+    if ((q.cwiseAbs().array() <= (0.5 * o.pose->size.array() + inflate)).all()) return true;
+  }
+  return false;
+}
+
+// Which image borders the box touches.
+struct BorderCut {
+  bool left = false, right = false, top = false, bottom = false;
+};
+
+}  // namespace
+
 std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const slam::PinholeCamera& cam,
                                                   const slam::SE3& T_wc, const Eigen::Vector4d& box,
                                                   const Eigen::Vector3d& up, const std::string& label,
                                                   const SemanticOptions& options,
-                                                  const std::vector<Eigen::Vector4d>& occluders) {
+                                                  const std::vector<Occluder>& occluders) {
   const MeasurementOptions& o = options.measurement;
   if (depth.empty() || depth.type() != CV_32F) return std::nullopt;
   const double w = box(2) - box(0), h = box(3) - box(1);
   if (w < 4 || h < 4) return std::nullopt;
-  // Cut off by the image border: the visible part's centre is not the object's.
+  const auto class_size = options.class_sizes.find(label);
+  const bool sized = class_size != options.class_sizes.end();
+  // Cut off by the image border: the visible part's centre is not the object's. A cut at the top or
+  // the bottom can be completed from the class's height (the opposite end is real; cameras are
+  // upright). A cut at the left or right cannot: whether the object's front or its side is seen is
+  // unknown, and so is the width to complete (measured: 0.4-0.8 m errors in the synthetic scenes).
   const double m = o.border_margin;
-  if (box(0) <= m || box(1) <= m || box(2) >= depth.cols - 1 - m || box(3) >= depth.rows - 1 - m) return std::nullopt;
+  BorderCut cut;
+  cut.left = box(0) <= m, cut.top = box(1) <= m;
+  cut.right = box(2) >= depth.cols - 1 - m, cut.bottom = box(3) >= depth.rows - 1 - m;
+  if (cut.left || cut.right || ((cut.top || cut.bottom) && (!sized || !o.complete_depth_with_class_size)) ||
+      (cut.top && cut.bottom))
+    return std::nullopt;
   const int x0 = std::max(0, static_cast<int>(std::floor(box(0) + o.box_shrink * w)));
   const int x1 = std::min(depth.cols - 1, static_cast<int>(std::ceil(box(2) - o.box_shrink * w)));
   const int y0 = std::max(0, static_cast<int>(std::floor(box(1) + o.box_shrink * h)));
   const int y1 = std::min(depth.rows - 1, static_cast<int>(std::ceil(box(3) - o.box_shrink * h)));
   const double area = static_cast<double>(x1 - x0 + 1) * (y1 - y0 + 1);
   const int stride = std::max(1, static_cast<int>(std::sqrt(area / o.target_samples)));
-  std::vector<std::pair<double, Eigen::Vector3d>> samples;  // (depth, camera point)
+  std::vector<std::pair<double, Eigen::Vector3d>> samples;  // (depth, world point)
   for (int y = y0; y <= y1; y += stride) {
     const float* row = depth.ptr<float>(y);
     for (int x = x0; x <= x1; x += stride) {
       const double z = row[x];
       if (!(z >= o.min_depth && z <= o.max_depth)) continue;
-      bool hidden = false;
-      for (const auto& b : occluders) hidden = hidden || (x >= b(0) && x <= b(2) && y >= b(1) && y <= b(3));
-      if (hidden) continue;
-      samples.emplace_back(z, cam.unproject(Eigen::Vector2d(x, y)) * z);
+      const Eigen::Vector3d p = T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z);
+      if (hidden_by(occluders, x, y, p, o.occluder_inflate)) continue;
+      samples.emplace_back(z, p);
     }
   }
   if (static_cast<int>(samples.size()) < o.min_points) return std::nullopt;
@@ -74,8 +104,7 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   // box (what lies behind it is wall or floor, what lies in front a partial occluder).
   std::sort(samples.begin(), samples.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   double band = o.depth_band;
-  if (const auto it = options.class_sizes.find(label); it != options.class_sizes.end())
-    band = std::max(0.1, std::max(it->second[0], it->second[1]));
+  if (sized) band = std::max(0.1, std::max(class_size->second[0], class_size->second[1]));
   // Thin objects (a pole) own few of their box's pixels: take the nearest window with enough of them.
   const bool thin = options.thin_classes.count(label) > 0;
   const size_t need = std::max<size_t>(o.min_points, static_cast<size_t>((thin ? o.thin_support : o.cluster_support) *
@@ -90,7 +119,7 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   if (begin >= end) return std::nullopt;
   std::vector<Eigen::Vector3d> world;
   world.reserve(end - begin);
-  for (size_t i = begin; i < end; ++i) world.push_back(T_wc * samples[i].second);
+  for (size_t i = begin; i < end; ++i) world.push_back(samples[i].second);
 
   // Principal horizontal axis.
   const Eigen::Vector3d z = up.normalized();
@@ -115,39 +144,49 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   for (int k = 0; k < 3; ++k) lo(k) = percentile(ax[k], 0.05), hi(k) = percentile(ax[k], 0.95);
   Eigen::Vector3d size = (hi - lo).cwiseMax(0.02);
   // Far larger than the class allows: the points are wall or floor, not the object.
-  if (const auto it = options.class_sizes.find(label); it != options.class_sizes.end()) {
-    const double largest = std::max({it->second[0], it->second[1], it->second[2]});
+  if (sized) {
+    const double largest = std::max({class_size->second[0], class_size->second[1], class_size->second[2]});
     if (size.maxCoeff() > o.max_size_ratio * largest) return std::nullopt;
   }
+  if (!o.complete_depth_with_class_size || !sized) return ObjectPose{slam::SE3(R, R * (0.5 * (lo + hi))), size};
+  const auto& cs = class_size->second;
+
+  // A box cut at the top or bottom: the sampled vertical extent ends short of the box's uncut edge
+  // by the trimmed margin (box_shrink and the 5 % tail, as a share of the sampled extent); from that
+  // real end the object spans the class's height.
+  const double trim = (o.box_shrink + 0.05 * (1 - 2 * o.box_shrink)) / (0.9 * (1 - 2 * o.box_shrink));
+  if (cut.bottom || cut.top) {
+    const double seen = (hi(2) - lo(2)) * (1 + 2 * trim), full = std::max(seen, cs[2]);
+    if (cut.bottom)
+      hi(2) += trim * (hi(2) - lo(2)), lo(2) = hi(2) - full;
+    else
+      lo(2) -= trim * (hi(2) - lo(2)), hi(2) = lo(2) + full;
+  }
+  size = (hi - lo).cwiseMax(0.02);
   Eigen::Vector3d centre = R * (0.5 * (lo + hi));
 
   // Only the camera-facing surface is seen: the depth comes from the class's typical size.
-  if (o.complete_depth_with_class_size) {
-    const auto it = options.class_sizes.find(label);
-    if (it != options.class_sizes.end()) {
-      Eigen::Vector3d view = centre - T_wc.translation();
-      view -= view.dot(z) * z;
-      if (view.norm() > 1e-6) {
-        view.normalize();
-        // The horizontal object axis closer to the viewing direction is the hidden depth.
-        const int k = std::abs(view.dot(R.col(0))) > std::abs(view.dot(R.col(1))) ? 0 : 1;
-        // The class's horizontal size that is not the seen width is the hidden depth.
-        const double other_seen = size(1 - k);
-        const auto& cs = it->second;
-        const double expected = std::abs(other_seen - cs[0]) < std::abs(other_seen - cs[1]) ? cs[1] : cs[0];
-        // Anchor on the front surface (the extent end facing the camera): what lies behind it in the
-        // box may be the object's back or the wall it stands against.
-        const double sign = view.dot(R.col(k)) >= 0 ? 1.0 : -1.0;
-        const double front = sign > 0 ? lo(k) : hi(k);
-        centre += (front + sign * 0.5 * expected - centre.dot(R.col(k))) * R.col(k);
-        size(k) = expected;
-      }
-    }
+  Eigen::Vector3d view = centre - T_wc.translation();
+  view -= view.dot(z) * z;
+  if (view.norm() > 1e-6) {
+    view.normalize();
+    // The horizontal object axis closer to the viewing direction is the hidden depth.
+    const int k = std::abs(view.dot(R.col(0))) > std::abs(view.dot(R.col(1))) ? 0 : 1;
+    // The class's horizontal size that is not the seen width is the hidden depth.
+    const double other_seen = size(1 - k);
+    const double expected = std::abs(other_seen - cs[0]) < std::abs(other_seen - cs[1]) ? cs[1] : cs[0];
+    // Anchor on the front surface (the extent end facing the camera): what lies behind it in the
+    // box may be the object's back or the wall it stands against.
+    const double sign = view.dot(R.col(k)) >= 0 ? 1.0 : -1.0;
+    const double front = sign > 0 ? lo(k) : hi(k);
+    centre += (front + sign * 0.5 * expected - centre.dot(R.col(k))) * R.col(k);
+    size(k) = expected;
   }
   return ObjectPose{slam::SE3(R, centre), size};
 }
 
-double box_median_depth(const cv::Mat& depth, const Eigen::Vector4d& box, const MeasurementOptions& o) {
+double box_median_depth(const cv::Mat& depth, const Eigen::Vector4d& box, const MeasurementOptions& o,
+                        const Eigen::Vector4d* exclude) {
   if (depth.empty()) return 0;
   const double w = box(2) - box(0), h = box(3) - box(1);
   const int x0 = std::max(0, static_cast<int>(box(0) + o.box_shrink * w));
@@ -159,27 +198,32 @@ double box_median_depth(const cv::Mat& depth, const Eigen::Vector4d& box, const 
   std::vector<double> zs;
   for (int y = y0; y <= y1; y += stride)
     for (int x = x0; x <= x1; x += stride) {
+      if (exclude && x >= (*exclude)(0) && x <= (*exclude)(2) && y >= (*exclude)(1) && y <= (*exclude)(3)) continue;
       const double z = depth.at<float>(y, x);
       if (z >= o.min_depth && z <= o.max_depth) zs.push_back(z);
     }
-  return zs.empty() ? 0.0 : percentile(zs, 0.5);
+  return static_cast<int>(zs.size()) < (exclude ? o.min_points : 1) ? 0.0 : percentile(zs, 0.5);
 }
 
-std::vector<std::vector<Eigen::Vector4d>> nearer_overlapping_boxes(const cv::Mat& depth,
-                                                                   const std::vector<Eigen::Vector4d>& boxes,
-                                                                   const MeasurementOptions& o,
-                                                                   const std::vector<bool>& supports) {
+std::vector<std::vector<int>> nearer_overlapping_detections(const cv::Mat& depth, const std::vector<Eigen::Vector4d>& boxes,
+                                                            const MeasurementOptions& o,
+                                                            const std::vector<bool>& supports) {
   std::vector<double> z(boxes.size());
   for (size_t i = 0; i < boxes.size(); ++i) z[i] = box_median_depth(depth, boxes[i], o);
-  std::vector<std::vector<Eigen::Vector4d>> out(boxes.size());
+  std::vector<std::vector<int>> out(boxes.size());
   for (size_t i = 0; i < boxes.size(); ++i)
     for (size_t j = 0; j < boxes.size(); ++j) {
       if (i == j) continue;
       const auto& a = boxes[i];
       const auto& b = boxes[j];
+      if (!(std::min(a(2), b(2)) > std::max(a(0), b(0)) && std::min(a(3), b(3)) > std::max(a(1), b(1)))) continue;
       // Nearer: clearly less deep, or (objects standing on the floor, camera upright) its box reaches
-      // clearly lower in the image.
-      const bool nearer_by_depth = z[j] > 0 && z[i] > 0 && z[j] < z[i] - o.occluder_margin;
+      // clearly lower in the image. The depths compared are those of the parts of the two boxes that
+      // do not overlap: the overlap shows the nearer one in both (a chair far behind another one
+      // would otherwise look as near as it). A box inside the other one has no such part: whole boxes.
+      double zi = box_median_depth(depth, a, o, &b), zj = box_median_depth(depth, b, o, &a);
+      if (zi <= 0 || zj <= 0) zi = z[i], zj = z[j];
+      const bool nearer_by_depth = zj > 0 && zi > 0 && zj < zi - o.occluder_margin;
       const bool nearer_by_footprint = b(3) > a(3) + o.occluder_footprint_px;
       if (!nearer_by_depth && !nearer_by_footprint) continue;
       // A much larger box that holds most of mine is what I stand on or in front of (a cup on a
@@ -190,10 +234,43 @@ std::vector<std::vector<Eigen::Vector4d>> nearer_overlapping_boxes(const cv::Mat
       if (support && !nearer_by_depth && iw > 0 && ih > 0 && area_a > 0 && iw * ih / area_a > o.support_containment &&
           area_b > o.support_area_ratio * area_a)
         continue;
-      if (std::min(a(2), b(2)) > std::max(a(0), b(0)) && std::min(a(3), b(3)) > std::max(a(1), b(1)))
-        out[i].push_back(b);
+      out[i].push_back(static_cast<int>(j));
     }
   return out;
+}
+
+std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& depth, const slam::PinholeCamera& camera,
+                                                              const slam::SE3& T_wc,
+                                                              const std::vector<Eigen::Vector4d>& boxes,
+                                                              const std::vector<std::string>& labels,
+                                                              const Eigen::Vector3d& up, const SemanticOptions& options) {
+  const size_t n = boxes.size();
+  std::vector<std::optional<ObjectPose>> poses(n);
+  if (depth.empty()) return poses;
+  std::vector<bool> supports(n);
+  for (size_t i = 0; i < n; ++i) supports[i] = options.support_classes.count(labels[i]) > 0;
+  const auto nearer = nearer_overlapping_detections(depth, boxes, options.measurement, supports);
+  std::vector<double> z(n);
+  for (size_t i = 0; i < n; ++i) z[i] = box_median_depth(depth, boxes[i], options.measurement);
+  // Front to back: a detection is measured once all its occluders are; when the "nearer" relation
+  // has a cycle (nearer by depth one way, by footprint the other), the nearest pending one goes next
+  // and its unmeasured occluders hide their whole boxes.
+  std::vector<bool> done(n, false);
+  for (size_t count = 0; count < n; ++count) {
+    int next = -1;
+    for (size_t i = 0; i < n && next < 0; ++i)
+      if (!done[i] && std::all_of(nearer[i].begin(), nearer[i].end(), [&](int j) { return done[j]; }))
+        next = static_cast<int>(i);
+    if (next < 0)
+      for (size_t i = 0; i < n; ++i)
+        if (!done[i] && (next < 0 || z[i] < z[next])) next = static_cast<int>(i);
+    std::vector<Occluder> occluders;
+    for (int j : nearer[next])
+      occluders.push_back({boxes[j], done[j] && !options.box_masked_classes.count(labels[j]) ? poses[j] : std::nullopt});
+    poses[next] = measure_pose_from_depth(depth, camera, T_wc, boxes[next], up, labels[next], options, occluders);
+    done[next] = true;
+  }
+  return poses;
 }
 
 }  // namespace wardmap::semantics

@@ -33,30 +33,48 @@ struct ObjectMeasurement {
   int gt_instance = -1;              // true object id when the detector knows it (synthetic data)
 };
 
+// A nearer detection of the same keyframe whose box overlaps the one being measured. Its pixels
+// are left out: those whose 3-D point falls inside its measured box (inflated by
+// occluder_inflate) when it has a pose, else every pixel of its image box (also for the
+// box_masked_classes, whose measured box misses much of their frame).
+struct Occluder {
+  Eigen::Vector4d box = Eigen::Vector4d::Zero();
+  std::optional<ObjectPose> pose;
+};
+
 // Assoc. Eq. 1 "Pose": the object's pose and size from the depth inside its box. Points are taken
-// from the box shrunk by box_shrink, kept within depth_band of their median depth, moved to the
-// world; the orientation is the principal horizontal axis (about `up`), the size the 5-95 %
-// extents. With complete_depth_with_class_size, a centre seen only from the front is pushed back by
-// half the missing depth of the class's typical size. Returns no pose rather than a wrong one.
-// `occluders` are boxes of nearer detections of the same keyframe: their pixels are left out.
+// from the box shrunk by box_shrink; the depth window as deep as the class that holds the most of
+// them is the object; they are moved to the world; the orientation is the principal horizontal axis
+// (about `up`), the size the 5-95 % extents. With complete_depth_with_class_size, a centre seen
+// only from the front is pushed back by half the missing depth of the class's typical size, and a
+// box cut off by the image's top or bottom border is completed to the class's height from its
+// visible end. Returns no pose rather than a wrong one (a box cut at the left or right).
 std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const slam::PinholeCamera& camera,
                                                   const slam::SE3& T_wc, const Eigen::Vector4d& box,
                                                   const Eigen::Vector3d& up, const std::string& label,
                                                   const SemanticOptions& options,
-                                                  const std::vector<Eigen::Vector4d>& occluders = {});
+                                                  const std::vector<Occluder>& occluders = {});
 
 // Median depth of the trimmed box (0 when it has no valid depth): orders a keyframe's detections
-// front to back, so that each one is measured without the pixels of the nearer ones.
-double box_median_depth(const cv::Mat& depth, const Eigen::Vector4d& box, const MeasurementOptions& options);
+// front to back, so that each one is measured without the pixels of the nearer ones. With
+// `exclude`, the pixels inside that box are left out (0 when fewer than min_points remain).
+double box_median_depth(const cv::Mat& depth, const Eigen::Vector4d& box, const MeasurementOptions& options,
+                        const Eigen::Vector4d* exclude = nullptr);
 
-// For each box, the boxes of nearer detections overlapping it (Assoc. Eq. 1 measurements of one
-// keyframe, measured front to back).
+// For each box, the indices of the nearer detections overlapping it.
 // `supports[i]` tells that detection i is of a class things stand on (a table): a much larger
 // support box holding most of a box is not its occluder.
-std::vector<std::vector<Eigen::Vector4d>> nearer_overlapping_boxes(const cv::Mat& depth,
-                                                                   const std::vector<Eigen::Vector4d>& boxes,
-                                                                   const MeasurementOptions& options,
-                                                                   const std::vector<bool>& supports = {});
+std::vector<std::vector<int>> nearer_overlapping_detections(const cv::Mat& depth, const std::vector<Eigen::Vector4d>& boxes,
+                                                            const MeasurementOptions& options,
+                                                            const std::vector<bool>& supports = {});
+
+// Assoc. Eq. 1 "Pose" for all detections of one keyframe: front to back, so that each is measured
+// without the pixels of the nearer ones, masked by their measured 3-D boxes when they have one.
+std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& depth, const slam::PinholeCamera& camera,
+                                                              const slam::SE3& T_wc,
+                                                              const std::vector<Eigen::Vector4d>& boxes,
+                                                              const std::vector<std::string>& labels,
+                                                              const Eigen::Vector3d& up, const SemanticOptions& options);
 
 // The world's up direction from camera poses: the mean of their -y axes (cameras are held roughly
 // upright), normalised.

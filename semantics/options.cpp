@@ -29,7 +29,11 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(measurement.border_margin, 0, 1000, "measurement.border_margin");
   c(measurement.occluder_margin, 0, 10, "measurement.occluder_margin");
   c(measurement.occluder_footprint_px, 0, 10000, "measurement.occluder_footprint_px");
+  c(measurement.occluder_inflate, 0, 1, "measurement.occluder_inflate");
   c(measurement.thin_support, 0.001, 1, "measurement.thin_support");
+  c(measurement.support_containment, 0, 1, "measurement.support_containment");
+  c(measurement.support_area_ratio, 1, 1e6, "measurement.support_area_ratio");
+  c(measurement.max_depth, 0.01, 1000, "measurement.max_depth");
   c(groups.split_distance, 0.01, 100, "groups.split_distance");
   c(measurement.depth_band, 0.01, 10, "measurement.depth_band");
   c(measurement.min_points, 3, 100000, "measurement.min_points");
@@ -69,6 +73,14 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(m, "semantics.measurement", "target_samples", o.measurement.target_samples, file);
   read_option(m, "semantics.measurement", "cluster_support", o.measurement.cluster_support, file);
   read_option(m, "semantics.measurement", "border_margin", o.measurement.border_margin, file);
+  read_option(m, "semantics.measurement", "occluder_margin", o.measurement.occluder_margin, file);
+  read_option(m, "semantics.measurement", "occluder_footprint_px", o.measurement.occluder_footprint_px, file);
+  read_option(m, "semantics.measurement", "occluder_inflate", o.measurement.occluder_inflate, file);
+  read_option(m, "semantics.measurement", "support_containment", o.measurement.support_containment, file);
+  read_option(m, "semantics.measurement", "support_area_ratio", o.measurement.support_area_ratio, file);
+  read_option(m, "semantics.measurement", "thin_support", o.measurement.thin_support, file);
+  read_option(m, "semantics.measurement", "min_depth", o.measurement.min_depth, file);
+  read_option(m, "semantics.measurement", "max_depth", o.measurement.max_depth, file);
   read_option(g, "semantics.groups", "split_distance", o.groups.split_distance, file);
   read_option(m, "semantics.measurement", "depth_band", o.measurement.depth_band, file);
   read_option(m, "semantics.measurement", "min_points", o.measurement.min_points, file);

@@ -37,12 +37,12 @@ void SemanticMapper::add_keyframe(const KeyframeInput& kf) {
 
   t0 = std::chrono::steady_clock::now();
   std::vector<Eigen::Vector4d> boxes;
-  std::vector<bool> supports;
+  std::vector<std::string> labels;
   for (const auto& d : dets) {
     boxes.push_back(d.box);
-    supports.push_back(options_.support_classes.count(d.label) > 0);
+    labels.push_back(d.label);
   }
-  const auto occluders = nearer_overlapping_boxes(kf.depth, boxes, options_.measurement, supports);
+  auto poses = measure_keyframe_poses(kf.depth, camera_, kf.T_wc, boxes, labels, up, options_);
   for (size_t i = 0; i < dets.size(); ++i) {
     ObjectMeasurement m;
     m.id = static_cast<int>(measurements_.size());
@@ -53,7 +53,7 @@ void SemanticMapper::add_keyframe(const KeyframeInput& kf) {
     m.score = dets[i].score;
     m.embedding = std::move(embeddings[i]);
     m.gt_instance = dets[i].gt_instance;
-    if (!kf.depth.empty()) m.pose = measure_pose_from_depth(kf.depth, camera_, kf.T_wc, m.box, up, m.label, options_, occluders[i]);
+    m.pose = std::move(poses[i]);
     measurements_.push_back(std::move(m));
   }
   times_.measurement.push_back(seconds_since(t0));

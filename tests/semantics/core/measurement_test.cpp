@@ -43,6 +43,12 @@ TEST(Measurement, NoPoseForDegenerateInput) {
   const cv::Mat d = scene(5, 2, 0, 100, 100, 300);
   // Cut off by the left border.
   EXPECT_FALSE(measure_pose_from_depth(d, camera(), slam::SE3(), Eigen::Vector4d(0, 100, 100, 300), up, "door", o));
+  // Cut off at the bottom, but with no class height to complete it from.
+  const cv::Mat low = scene(5, 2, 200, 300, 300, 480);
+  EXPECT_FALSE(measure_pose_from_depth(low, camera(), slam::SE3(), Eigen::Vector4d(200, 300, 300, 479), up, "bin", o));
+  // Cut off at both the top and the bottom.
+  const cv::Mat tall = scene(5, 2, 200, 300, 0, 480);
+  EXPECT_FALSE(measure_pose_from_depth(tall, camera(), slam::SE3(), Eigen::Vector4d(200, 0, 300, 479), up, "door", o));
   // A 3x3 pixel box.
   EXPECT_FALSE(measure_pose_from_depth(d, camera(), slam::SE3(), Eigen::Vector4d(300, 200, 303, 203), up, "door", o));
 }
@@ -55,12 +61,57 @@ TEST(Measurement, NearerOverlappingDetectionIsLeftOut) {
   cv::Mat d = scene(8.0, 5.0, 200, 400, 150, 300);
   d(cv::Rect(320, 200, 120, 150)).setTo(2.0);
   const std::vector<Eigen::Vector4d> boxes = {Eigen::Vector4d(200, 150, 400, 300), Eigen::Vector4d(320, 200, 440, 350)};
-  const auto occ = nearer_overlapping_boxes(d, boxes, o.measurement);
-  ASSERT_EQ(occ[0].size(), 1u);
+  const auto occ = nearer_overlapping_detections(d, boxes, o.measurement);
+  ASSERT_EQ(occ[0], std::vector<int>{1});
   EXPECT_TRUE(occ[1].empty());
-  const auto p = measure_pose_from_depth(d, camera(), slam::SE3(), boxes[0], up, "chair", o, occ[0]);
+  const auto p = measure_pose_from_depth(d, camera(), slam::SE3(), boxes[0], up, "chair", o, {{boxes[1], std::nullopt}});
   ASSERT_TRUE(p);
   EXPECT_NEAR(p->pose.translation().z(), 5.0, 0.05);
+}
+
+// A cabinet behind a bed, seen beside it: the bed's box holds the cabinet's, yet only the bed's own
+// pixels (inside its measured 3-D box) are left out, so the cabinet keeps a pose.
+TEST(Measurement, MeasuredOccluderHidesOnlyItsOwnPixels) {
+  SemanticOptions o;
+  o.measurement.complete_depth_with_class_size = false;
+  const Eigen::Vector3d up(0, -1, 0);
+  // Wall at 7 m; cabinet face at 4 m over [360, 440) x [220, 300); bed face at 3 m over
+  // [160, 380) x [200, 400), hiding the cabinet's left quarter. The bed's box reaches u = 440 (its
+  // far end, not drawn here), so it holds the whole cabinet box.
+  cv::Mat d = scene(7.0, 4.0, 360, 440, 220, 300);
+  d(cv::Rect(160, 200, 220, 200)).setTo(3.0);
+  const std::vector<Eigen::Vector4d> boxes = {Eigen::Vector4d(160, 200, 440, 400), Eigen::Vector4d(360, 220, 440, 300)};
+  const auto poses = measure_keyframe_poses(d, camera(), slam::SE3(), boxes, {"box", "cabinet"}, up, o);
+  ASSERT_TRUE(poses[0]);
+  ASSERT_TRUE(poses[1]);
+  EXPECT_NEAR(poses[0]->pose.translation().z(), 3.0, 0.05);
+  EXPECT_NEAR(poses[1]->pose.translation().z(), 4.0, 0.05);
+  // Only the visible part right of the bed (u >= 380) is the cabinet's.
+  EXPECT_GT(poses[1]->pose.translation().x(), (380 - 319.5) / 500.0 * 4.0);
+  // Were the bed not measured, its whole box would hide the cabinet: no pose rather than a wrong one.
+  EXPECT_FALSE(measure_pose_from_depth(d, camera(), slam::SE3(), boxes[1], up, "cabinet", o, {{boxes[0], std::nullopt}}));
+}
+
+// A door cut by the image's bottom border is completed from its class height: its top is real, the
+// rest comes from the door's 2.05 m.
+TEST(Measurement, BottomCutBoxIsCompletedFromTheClassHeight) {
+  SemanticOptions o;
+  const Eigen::Vector3d up(0, -1, 0);
+  // Door face at z = 3 m over x in [-0.6, 0.3], y (down) in [-0.5, 1.55]: with f = 500 it spans
+  // u in [219.5, 369.5] and v in [156, 498], so the image cuts it at the bottom.
+  const auto pixel = [](double metres, double c) { return c + metres / 3.0 * 500.0; };
+  const int u0 = static_cast<int>(pixel(-0.6, 319.5)), u1 = static_cast<int>(pixel(0.3, 319.5));
+  const int v0 = static_cast<int>(pixel(-0.5, 239.5));
+  const cv::Mat d = scene(8.0, 3.0, u0, u1, v0, 480);
+  const Eigen::Vector4d box(u0, v0, u1, 479);
+  const auto p = measure_pose_from_depth(d, camera(), slam::SE3(), box, up, "door", o);
+  ASSERT_TRUE(p);
+  // True centre: x = -0.15, y = 0.525, and z = 3 + 0.03 (half of the door class's 0.06 m
+  // thickness, completed behind the face).
+  EXPECT_NEAR(p->pose.translation().x(), -0.15, 0.03);
+  EXPECT_NEAR(p->pose.translation().y(), 0.525, 0.04);
+  EXPECT_NEAR(p->pose.translation().z(), 3.03, 0.02);
+  EXPECT_NEAR(p->size.z(), 2.05, 0.02);
 }
 
 TEST(Measurement, UpFromCameraPoses) {
