@@ -23,7 +23,13 @@ FeatureGrid::FeatureGrid(const std::vector<Eigen::Vector2d>& points, const std::
 
 std::vector<int> FeatureGrid::in_area(double x, double y, double r, int min_level, int max_level) const {
   std::vector<int> out;
-  if (cells_.empty()) return out;
+  in_area(x, y, r, min_level, max_level, out);
+  return out;
+}
+
+void FeatureGrid::in_area(double x, double y, double r, int min_level, int max_level, std::vector<int>& out) const {
+  out.clear();
+  if (cells_.empty()) return;
   const int x0 = std::max(0, static_cast<int>(std::floor((x - r) / cell_)));
   const int x1 = std::min(cols_ - 1, static_cast<int>(std::floor((x + r) / cell_)));
   const int y0 = std::max(0, static_cast<int>(std::floor((y - r) / cell_)));
@@ -36,7 +42,6 @@ std::vector<int> FeatureGrid::in_area(double x, double y, double r, int min_leve
         const Eigen::Vector2d& p = points_[static_cast<size_t>(i)];
         if (std::abs(p.x() - x) <= r && std::abs(p.y() - y) <= r) out.push_back(i);
       }
-  return out;
 }
 
 }  // namespace wardmap::slam

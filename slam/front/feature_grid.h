@@ -15,6 +15,8 @@ class FeatureGrid {
   // Indices of the points within `radius` (L-inf) of (x, y) whose level is in [min_level, max_level]
   // (max_level < 0: no upper bound).
   std::vector<int> in_area(double x, double y, double radius, int min_level = 0, int max_level = -1) const;
+  // The same into `out` (cleared first), for loops that reuse one buffer instead of allocating per query.
+  void in_area(double x, double y, double radius, int min_level, int max_level, std::vector<int>& out) const;
 
  private:
   const std::vector<int>& cell(int cx, int cy) const { return cells_[static_cast<size_t>(cy * cols_ + cx)]; }

@@ -1,5 +1,7 @@
 #include "slam/front/front_options.h"
 
+#include "slam/core/errors.h"
+
 namespace wardmap::slam {
 
 void FrontOptions::validate(const std::filesystem::path& file) const {
@@ -34,6 +36,8 @@ void FrontOptions::validate(const std::filesystem::path& file) const {
   check_range(t.max_local_keyframes, 1, 10000, "tracking.max_local_keyframes", file);
   check_range(t.pose_rounds, 1, 20, "tracking.pose_rounds", file);
   check_range(t.pose_iterations, 1, 200, "tracking.pose_iterations", file);
+  if (t.pose_solver != "lm" && t.pose_solver != "ceres")
+    throw InputError(file.string(), "key 'tracking.pose_solver': must be 'lm' or 'ceres', got '" + t.pose_solver + "'");
   check_range(t.chi2_mono, 0.1, 100.0, "tracking.chi2_mono", file);
   check_range(t.chi2_stereo, 0.1, 100.0, "tracking.chi2_stereo", file);
   check_range(t.keyframe_max_frames, 1, 10000, "tracking.keyframe_max_frames", file);
@@ -128,6 +132,7 @@ FrontOptions load_front_options(const io::Settings& settings) {
   read_option(t, ts, "max_local_keyframes", k.max_local_keyframes, f);
   read_option(t, ts, "pose_rounds", k.pose_rounds, f);
   read_option(t, ts, "pose_iterations", k.pose_iterations, f);
+  read_option(t, ts, "pose_solver", k.pose_solver, f);
   read_option(t, ts, "chi2_mono", k.chi2_mono, f);
   read_option(t, ts, "chi2_stereo", k.chi2_stereo, f);
   read_option(t, ts, "keyframe_max_frames", k.keyframe_max_frames, f);

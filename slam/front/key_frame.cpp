@@ -22,15 +22,37 @@ int KeyFrame::tracked_points(int min_observations) const {
   return n;
 }
 
-void KeyFrame::add_connection(const std::shared_ptr<KeyFrame>& kf, int weight) {
-  connections_[kf->id()] = Connection{kf, weight};
+std::vector<std::pair<KeyFrameId, KeyFrame::Connection>>::iterator KeyFrame::find_connection(KeyFrameId id) {
+  return std::lower_bound(connections_.begin(), connections_.end(), id,
+                          [](const auto& c, KeyFrameId k) { return c.first < k; });
 }
 
-void KeyFrame::erase_connection(KeyFrameId id) { connections_.erase(id); }
+std::vector<std::pair<KeyFrameId, KeyFrame::Connection>>::const_iterator KeyFrame::find_connection(
+    KeyFrameId id) const {
+  return std::lower_bound(connections_.begin(), connections_.end(), id,
+                          [](const auto& c, KeyFrameId k) { return c.first < k; });
+}
+
+void KeyFrame::set_connection(KeyFrameId id, Connection c) {
+  const auto it = find_connection(id);
+  if (it != connections_.end() && it->first == id)
+    it->second = std::move(c);
+  else
+    connections_.insert(it, {id, std::move(c)});
+}
+
+void KeyFrame::add_connection(const std::shared_ptr<KeyFrame>& kf, int weight) {
+  set_connection(kf->id(), Connection{kf, weight});
+}
+
+void KeyFrame::erase_connection(KeyFrameId id) {
+  const auto it = find_connection(id);
+  if (it != connections_.end() && it->first == id) connections_.erase(it);
+}
 
 int KeyFrame::weight(KeyFrameId id) const {
-  auto it = connections_.find(id);
-  return it == connections_.end() ? 0 : it->second.weight;
+  const auto it = find_connection(id);
+  return it == connections_.end() || it->first != id ? 0 : it->second.weight;
 }
 
 void KeyFrame::update_connections(int min_weight) {
@@ -59,28 +81,35 @@ void KeyFrame::update_connections(int min_weight) {
       best = c.first;
     }
     if (c.second >= min_weight) {
-      connections_[id] = Connection{c.first, c.second};
+      set_connection(id, Connection{c.first, c.second});
       c.first->add_connection(self, c.second);
     }
   }
   if (connections_.empty()) {
-    connections_[best->id()] = Connection{best, best_w};
+    set_connection(best->id(), Connection{best, best_w});
     best->add_connection(self, best_w);
   }
   if (!parent_.lock() && best && best->id() < id_) parent_ = best;
 }
 
 std::vector<std::shared_ptr<KeyFrame>> KeyFrame::best_covisibles(int n) const {
-  std::vector<std::pair<int, std::shared_ptr<KeyFrame>>> v;
-  for (const auto& [id, c] : connections_)
-    if (auto kf = c.keyframe.lock(); kf && !kf->bad()) v.emplace_back(c.weight, kf);
-  std::stable_sort(v.begin(), v.end(), [](const auto& a, const auto& b) {
-    return a.first != b.first ? a.first > b.first : a.second->id() < b.second->id();
-  });
+  // Ordered on (weight, id) before any weak_ptr is locked: only the neighbours returned, and the bad
+  // ones ranked before them, pay for a lock (the tracker asks for the best 10 of dozens, per local
+  // keyframe and frame).
+  struct Ranked {
+    int weight;
+    KeyFrameId id;
+    const std::weak_ptr<KeyFrame>* keyframe;
+  };
+  std::vector<Ranked> ranked;
+  ranked.reserve(connections_.size());
+  for (const auto& [id, c] : connections_) ranked.push_back({c.weight, id, &c.keyframe});
+  std::sort(ranked.begin(), ranked.end(),
+            [](const Ranked& a, const Ranked& b) { return a.weight != b.weight ? a.weight > b.weight : a.id < b.id; });
   std::vector<std::shared_ptr<KeyFrame>> out;
-  for (auto& [w, kf] : v) {
+  for (const Ranked& r : ranked) {
     if (n > 0 && static_cast<int>(out.size()) >= n) break;
-    out.push_back(kf);
+    if (auto kf = r.keyframe->lock(); kf && !kf->bad()) out.push_back(std::move(kf));
   }
   return out;
 }

@@ -67,6 +67,8 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   const SE3& pose_relative_to_parent() const { return T_cp_; }
 
   bool not_erase = false;  // set while another module relies on it (e.g. the mapper's current keyframe)
+  // Scratch for build_local_map: the stamp of the last local map that took this keyframe.
+  std::uint64_t local_map_stamp = 0;
   // Bag of words (empty without a vocabulary), for relocalisation; set once by the tracker.
   place::BowVector bow;
   place::FeatureVector feature_vector;  // direct index (features per vocabulary node), for guided matching
@@ -82,7 +84,13 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   std::shared_ptr<const FrameFeatures> features_;
   SE3 T_cw_, T_wc_;
   std::vector<std::shared_ptr<MapPoint>> map_points_;
-  std::map<KeyFrameId, Connection> connections_;
+  // Sorted by keyframe id; a flat vector (the tracker ranks the neighbours of dozens of keyframes
+  // per frame, and contiguous entries cost far fewer cache misses than tree nodes).
+  std::vector<std::pair<KeyFrameId, Connection>> connections_;
+  // The first connection whose id is not below `id`; sets (inserts or overwrites) one connection.
+  std::vector<std::pair<KeyFrameId, Connection>>::iterator find_connection(KeyFrameId id);
+  std::vector<std::pair<KeyFrameId, Connection>>::const_iterator find_connection(KeyFrameId id) const;
+  void set_connection(KeyFrameId id, Connection c);
   std::weak_ptr<KeyFrame> parent_;
   bool bad_ = false;
   SE3 T_cp_;

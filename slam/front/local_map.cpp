@@ -1,9 +1,9 @@
 #include "slam/front/local_map.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
-#include <map>
-#include <unordered_set>
+#include <cstdint>
 
 #include "slam/front/submap.h"
 
@@ -11,31 +11,44 @@ namespace wardmap::slam {
 
 LocalMap build_local_map(const Frame& frame, const Submap& submap, const TrackingOptions& o) {
   LocalMap local;
-  // Keyframes sharing points with the frame (K1), weighted by the number shared.
-  std::map<KeyFrameId, std::pair<std::shared_ptr<KeyFrame>, int>> shared;
+  // Keyframes sharing points with the frame (K1), weighted by the number shared. The observing
+  // keyframes' ids are gathered and counted first, so that only one weak_ptr per keyframe is locked
+  // (a frame has thousands of observations over a few dozen keyframes).
+  struct Observer {
+    KeyFrameId id;
+    const std::weak_ptr<KeyFrame>* keyframe;
+  };
+  std::vector<Observer> observers;
+  observers.reserve(8 * frame.size());
   for (size_t i = 0; i < frame.size(); ++i) {
     const auto& mp = frame.map_points[i];
     if (!mp || mp->bad() || frame.outlier[i]) continue;
-    for (const auto& [id, obs] : mp->observations())
-      if (auto kf = obs.keyframe.lock(); kf && !kf->bad()) {
-        auto& s = shared[id];
-        s.first = kf;
-        ++s.second;
-      }
+    for (const auto& [id, obs] : mp->observations()) observers.push_back({id, &obs.keyframe});
   }
-  std::unordered_set<KeyFrameId> in_map;
+  std::sort(observers.begin(), observers.end(), [](const Observer& a, const Observer& b) { return a.id < b.id; });
+  // Keyframes already taken carry this call's stamp (unique across calls and trackers).
+  static std::atomic<std::uint64_t> last_stamp{0};
+  const std::uint64_t stamp = ++last_stamp;
   auto add = [&](const std::shared_ptr<KeyFrame>& kf) {
     if (!kf || kf->bad() || static_cast<int>(local.keyframes.size()) >= o.max_local_keyframes) return;
-    if (in_map.insert(kf->id()).second) local.keyframes.push_back(kf);
+    if (kf->local_map_stamp == stamp) return;
+    kf->local_map_stamp = stamp;
+    local.keyframes.push_back(kf);
   };
   int best = 0;
   std::vector<std::pair<int, std::shared_ptr<KeyFrame>>> k1;
-  for (auto& [id, s] : shared) {
-    k1.emplace_back(s.second, s.first);
-    if (s.second > best) {
-      best = s.second;
-      local.reference = s.first;
+  for (size_t a = 0; a < observers.size();) {
+    size_t b = a + 1;
+    while (b < observers.size() && observers[b].id == observers[a].id) ++b;
+    if (auto kf = observers[a].keyframe->lock(); kf && !kf->bad()) {
+      const int shared = static_cast<int>(b - a);
+      if (shared > best) {  // ties: the smallest id, as the ids are ascending
+        best = shared;
+        local.reference = kf;
+      }
+      k1.emplace_back(shared, std::move(kf));
     }
+    a = b;
   }
   std::stable_sort(k1.begin(), k1.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
   for (auto& [w, kf] : k1) add(kf);

@@ -11,18 +11,34 @@ namespace wardmap::slam {
 MapPoint::MapPoint(MapPointId id, const Eigen::Vector3d& position, KeyFrameId first_keyframe, double first_timestamp)
     : id_(id), first_keyframe_(first_keyframe), position_(position), last_seen_(first_timestamp) {}
 
+namespace {
+
+// The first observation whose keyframe id is not below `id`.
+template <typename Vector>
+auto lower_bound_id(Vector& observations, KeyFrameId id) {
+  return std::lower_bound(observations.begin(), observations.end(), id,
+                          [](const auto& o, KeyFrameId k) { return o.first < k; });
+}
+
+}  // namespace
+
 void MapPoint::add_observation(const std::shared_ptr<KeyFrame>& kf, int index) {
-  observations_[kf->id()] = Observation{kf, index};
+  const auto it = lower_bound_id(observations_, kf->id());
+  if (it != observations_.end() && it->first == kf->id())
+    it->second = Observation{kf, index};
+  else
+    observations_.insert(it, {kf->id(), Observation{kf, index}});
 }
 
 void MapPoint::erase_observation(KeyFrameId kf) {
-  observations_.erase(kf);
+  const auto it = lower_bound_id(observations_, kf);
+  if (it != observations_.end() && it->first == kf) observations_.erase(it);
   if (observations_.empty()) bad_ = true;
 }
 
 int MapPoint::index_in(KeyFrameId kf) const {
-  auto it = observations_.find(kf);
-  return it == observations_.end() ? -1 : it->second.index;
+  const auto it = lower_bound_id(observations_, kf);
+  return it == observations_.end() || it->first != kf ? -1 : it->second.index;
 }
 
 void MapPoint::update_descriptor() {
@@ -66,7 +82,7 @@ void MapPoint::update_normal_and_depth() {
   normal_ = (normal / n).normalized();
   const double dist = (position_ - reference->camera_center()).norm();
   const auto& f = reference->features();
-  const int level = f.levels[static_cast<size_t>(observations_.at(reference->id()).index)];
+  const int level = f.levels[static_cast<size_t>(index_in(reference->id()))];
   const ScalePyramid& pyr = *f.pyramid;
   max_distance_ = dist * pyr.scale[static_cast<size_t>(level)];
   min_distance_ = max_distance_ / pyr.scale.back();

@@ -46,6 +46,7 @@ int OrbMatcher::search_by_projection(Frame& current, const Frame& last, double r
   const SE3& T_cw = current.pose_cw();
   RotationHistogram hist(o_.histogram_bins);
   int matches = 0;
+  std::vector<int> idx;  // reused by every query
   for (size_t i = 0; i < last.map_points.size(); ++i) {
     const auto& mp = last.map_points[i];
     if (!mp || mp->bad() || last.outlier[i]) continue;
@@ -55,7 +56,7 @@ int OrbMatcher::search_by_projection(Frame& current, const Frame& last, double r
     if (!camera_.in_image(uv)) continue;
     const int level = lf.levels[i];
     const double r = radius * cf.pyramid->scale[static_cast<size_t>(level)];
-    const std::vector<int> idx = cf.grid.in_area(uv.x(), uv.y(), r, std::max(0, level - 1), level + 1);
+    cf.grid.in_area(uv.x(), uv.y(), r, std::max(0, level - 1), level + 1, idx);
     if (idx.empty()) continue;
     const uchar* d = mp->descriptor().empty() ? lf.descriptor(i) : mp->descriptor().ptr<uchar>();
     const double ur = uv.x() - cf.bf / pc.z();
@@ -82,12 +83,13 @@ int OrbMatcher::search_by_projection(Frame& current, const std::vector<Projectio
                                      double radius) const {
   const FrameFeatures& cf = current.features();
   int matches = 0;
+  std::vector<int> idx;  // reused by every query
   for (const ProjectionCandidate& c : candidates) {
     const MapPoint& mp = *c.point;
     if (mp.bad() || mp.track_frame_id == current.id()) continue;
     const double view_factor = c.view_cos > 0.998 ? 2.5 : 4.0;
     const double r = radius * view_factor * cf.pyramid->scale[static_cast<size_t>(c.level)];
-    const std::vector<int> idx = cf.grid.in_area(c.pixel.x(), c.pixel.y(), r, c.level - 1, c.level);
+    cf.grid.in_area(c.pixel.x(), c.pixel.y(), r, c.level - 1, c.level, idx);
     if (idx.empty()) continue;
     const uchar* d = mp.descriptor().ptr<uchar>();
     Best best;

@@ -1,11 +1,153 @@
 #include "slam/front/pose_optimizer.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
+
+#include <Eigen/Cholesky>
 
 #include "slam/front/reprojection_costs.h"
 
 namespace wardmap::slam {
 
+namespace {
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+// Huber's rho on a squared whitened error s with threshold b (= a^2, a chi2 value), as
+// ceres::HuberLoss(sqrt(b)): s inside, 2 sqrt(b s) - b outside. `weight` gets rho'(s), the factor of
+// the observation in iteratively reweighted least squares.
+double huber(double s, double b, double* weight) {
+  if (s <= b) {
+    *weight = 1.0;
+    return s;
+  }
+  const double r = std::sqrt(b * s);
+  *weight = b / r;  // sqrt(b / s)
+  return 2.0 * r - b;
+}
+
+// The observations used in one round, with the robust threshold of each (0 = plain least squares).
+struct ActiveObservation {
+  const PoseObservation* o;
+  double huber_b;
+};
+
+// Cost 0.5 sum rho(|r|^2) at T, and with `H`/`g` the Gauss-Newton normal equations of the
+// (reweighted) whitened residuals for a left perturbation T <- exp(delta) T. False when a point lies
+// behind the camera (the step leading there is rejected, as Ceres does with a failed evaluation).
+bool evaluate(const SE3& T, const std::vector<ActiveObservation>& active, const PinholeIntrinsics& k, double* cost,
+              Matrix6d* H, Vector6d* g) {
+  double c = 0;
+  if (H) {
+    H->setZero();
+    g->setZero();
+  }
+  for (const ActiveObservation& a : active) {
+    const PoseObservation& o = *a.o;
+    const Eigen::Vector3d pc = T * o.point;
+    if (pc.z() <= 1e-9) return false;
+    const double iz = 1.0 / pc.z(), s = o.inv_sigma;
+    const double u = k.fx * pc.x() * iz + k.cx, v = k.fy * pc.y() * iz + k.cy;
+    const bool stereo = o.right_u >= 0;
+    Eigen::Vector3d r(s * (u - o.pixel.x()), s * (v - o.pixel.y()), 0.0);
+    if (stereo) r[2] = s * (u - k.bf * iz - o.right_u);
+    const double e2 = r.squaredNorm();
+    double w = 1.0;
+    c += a.huber_b > 0 ? huber(e2, a.huber_b, &w) : e2;
+    if (!H) continue;
+    // d(pixel)/d(pc), then d(pc)/d(delta) = [I | -[pc]x] (exact: linearised at delta = 0).
+    Eigen::Matrix<double, 3, 3> Jp;
+    Jp.row(0) << k.fx * iz, 0, -k.fx * pc.x() * iz * iz;
+    Jp.row(1) << 0, k.fy * iz, -k.fy * pc.y() * iz * iz;
+    Jp.row(2) << k.fx * iz, 0, (-k.fx * pc.x() + k.bf) * iz * iz;
+    Eigen::Matrix<double, 3, 6> Jd;
+    Jd.leftCols<3>().setIdentity();
+    Jd.rightCols<3>() << 0, pc.z(), -pc.y(), -pc.z(), 0, pc.x(), pc.y(), -pc.x(), 0;
+    if (stereo) {
+      const Eigen::Matrix<double, 3, 6> J = s * Jp * Jd;
+      H->noalias() += w * J.transpose() * J;
+      g->noalias() += w * J.transpose() * r;
+    } else {
+      const Eigen::Matrix<double, 2, 6> J = s * Jp.topRows<2>() * Jd;
+      H->noalias() += w * J.transpose() * J;
+      g->noalias() += w * J.transpose() * r.head<2>();
+    }
+  }
+  *cost = 0.5 * c;
+  return true;
+}
+
+// Levenberg-Marquardt on the 6 pose parameters with Ceres's trust-region schedule (initial radius
+// 1e4, damping diag(H) / radius, radius scaled by max(1/3, 1 - (2 rho - 1)^3) on success and
+// shrunk by a doubling factor on failure) and its function tolerance (1e-6 relative). Returns false
+// when the starting pose cannot be evaluated.
+bool solve_levenberg_marquardt(SE3& T, const std::vector<ActiveObservation>& active, const PinholeIntrinsics& k,
+                               int iterations) {
+  double cost = 0;
+  Matrix6d H;
+  Vector6d g;
+  if (!evaluate(T, active, k, &cost, &H, &g)) return false;
+  double radius = 1e4, decrease = 2.0;
+  Matrix6d H_new;
+  Vector6d g_new;
+  for (int it = 0; it < iterations; ++it) {
+    if (g.lpNorm<Eigen::Infinity>() <= 1e-10) break;  // Ceres's gradient tolerance
+    Matrix6d A = H;
+    for (int i = 0; i < 6; ++i) A(i, i) += std::clamp(H(i, i), 1e-6, 1e32) / radius;
+    const Vector6d dx = A.ldlt().solve(-g);
+    if (!dx.allFinite()) break;
+    const double model_decrease = -(g.dot(dx) + 0.5 * dx.dot(H * dx));
+    const SE3 T_new = SE3::exp(dx) * T;
+    double cost_new = 0;
+    const bool valid = evaluate(T_new, active, k, &cost_new, &H_new, &g_new);
+    const double rho = valid && model_decrease > 0 ? (cost - cost_new) / model_decrease : -1.0;
+    if (rho > 1e-3) {
+      const bool converged = cost - cost_new <= 1e-6 * cost || dx.norm() <= 1e-12;
+      T = T_new;
+      cost = cost_new;
+      H = H_new;
+      g = g_new;
+      const double f = 2.0 * rho - 1.0;
+      radius = std::min(1e16, radius / std::max(1.0 / 3.0, 1.0 - f * f * f));
+      decrease = 2.0;
+      if (converged) break;
+    } else {
+      radius /= decrease;
+      decrease *= 2.0;
+      if (radius < 1e-32) break;
+    }
+  }
+  return true;
+}
+
+// The same round with Ceres (analytic PosePerturbationCost around the round's starting pose).
+void solve_ceres(SE3& T, const std::vector<ActiveObservation>& active, const PinholeIntrinsics& k, int iterations) {
+  double delta[6] = {0, 0, 0, 0, 0, 0};
+  PerturbationCache cache;
+  ceres::Problem problem;
+  problem.AddParameterBlock(delta, 6);
+  for (const ActiveObservation& a : active) {
+    const bool stereo = a.o->right_u >= 0;
+    ceres::CostFunction* cost =
+        stereo ? static_cast<ceres::CostFunction*>(new PosePerturbationCost<3>(k, T, *a.o, &cache))
+               : new PosePerturbationCost<2>(k, T, *a.o, &cache);
+    ceres::LossFunction* loss = a.huber_b > 0 ? new ceres::HuberLoss(std::sqrt(a.huber_b)) : nullptr;
+    problem.AddResidualBlock(cost, loss, delta);
+  }
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  so.max_num_iterations = iterations;
+  so.logging_type = ceres::SILENT;
+  so.num_threads = 1;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &problem, &summary);
+  Vector6d d;
+  for (int i = 0; i < 6; ++i) d[i] = delta[i];
+  T = SE3::exp(d) * T;
+}
+
+}  // namespace
 
 double observation_chi2(const SE3& T_cw, const PoseObservation& o, const PinholeCamera& c, double bf) {
   const Eigen::Vector3d pc = T_cw * o.point;
@@ -29,36 +171,24 @@ PoseEstimate optimize_pose(const SE3& initial, const std::vector<PoseObservation
   if (obs.size() < 3) return est;
   const PinholeIntrinsics K{camera.fx, camera.fy, camera.cx, camera.cy, bf};
 
+  std::vector<ActiveObservation> active;
+  active.reserve(obs.size());
   for (int round = 0; round < options.rounds; ++round) {
-    double delta[6] = {0, 0, 0, 0, 0, 0};
-    PerturbationCache cache;
-    ceres::Problem problem;
-    problem.AddParameterBlock(delta, 6);
     const bool robust = round < options.robust_rounds;
-    int used = 0;
+    active.clear();
     for (size_t i = 0; i < obs.size(); ++i) {
       if (!est.inlier[i]) continue;
-      const PoseObservation& o = obs[i];
-      const bool stereo = o.right_u >= 0;
-      ceres::CostFunction* cost =
-          stereo ? static_cast<ceres::CostFunction*>(new PosePerturbationCost<3>(K, est.T_cw, o, &cache))
-                 : new PosePerturbationCost<2>(K, est.T_cw, o, &cache);
-      ceres::LossFunction* loss =
-          robust ? new ceres::HuberLoss(std::sqrt(stereo ? options.chi2_stereo : options.chi2_mono)) : nullptr;
-      problem.AddResidualBlock(cost, loss, delta);
-      ++used;
+      const bool stereo = obs[i].right_u >= 0;
+      // A point behind the camera at the round's start cannot be linearised: it sits this round out
+      // (the chi2 test below then flags it).
+      if ((est.T_cw * obs[i].point).z() <= 1e-9) continue;
+      active.push_back({&obs[i], robust ? (stereo ? options.chi2_stereo : options.chi2_mono) : 0.0});
     }
-    if (used < 3) break;
-    ceres::Solver::Options so;
-    so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
-    so.max_num_iterations = options.iterations;
-    so.logging_type = ceres::SILENT;
-    so.num_threads = 1;
-    ceres::Solver::Summary summary;
-    ceres::Solve(so, &problem, &summary);
-    Vector6d d;
-    for (int i = 0; i < 6; ++i) d[i] = delta[i];
-    est.T_cw = SE3::exp(d) * est.T_cw;
+    if (active.size() < 3) break;
+    if (options.solver == PoseSolver::kCeres)
+      solve_ceres(est.T_cw, active, K, options.iterations);
+    else
+      solve_levenberg_marquardt(est.T_cw, active, K, options.iterations);
 
     est.inliers = 0;
     for (size_t i = 0; i < obs.size(); ++i) {

@@ -29,6 +29,7 @@ Tracker::Tracker(const FrontOptions& options, const PinholeCamera& camera, Local
     : options_(options), camera_(camera), matcher_(options.matcher, camera), mapper_(mapper) {
   pose_options_.rounds = options.tracking.pose_rounds;
   pose_options_.iterations = options.tracking.pose_iterations;
+  pose_options_.solver = options.tracking.pose_solver == "ceres" ? PoseSolver::kCeres : PoseSolver::kLevenbergMarquardt;
   pose_options_.chi2_mono = options.tracking.chi2_mono;
   pose_options_.chi2_stereo = options.tracking.chi2_stereo;
   if (options_.monocular) {

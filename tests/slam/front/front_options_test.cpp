@@ -25,7 +25,7 @@ const char* kBase =
 TEST(FrontOptions, TrackingAndMappingSectionsOverrideDefaults) {
   const std::string text = std::string(kBase) +
                            "ORBextractor.nFeatures: 1500\ntracking:\n  short_term_seconds: 1.5\n  match_th_low: 40\n"
-                           "mapping:\n  ba_max_keyframes: 7\n  keyframe_culling: false\n";
+                           "  pose_solver: lm\nmapping:\n  ba_max_keyframes: 7\n  keyframe_culling: false\n";
   const FrontOptions o = load_front_options(io::parse_settings(text, "t.yaml"));
   EXPECT_EQ(o.orb.n_features, 1500);
   EXPECT_DOUBLE_EQ(o.tracking.short_term_seconds, 1.5);
@@ -33,6 +33,8 @@ TEST(FrontOptions, TrackingAndMappingSectionsOverrideDefaults) {
   EXPECT_EQ(o.mapping.ba_max_keyframes, 7);
   EXPECT_FALSE(o.mapping.keyframe_culling);
   EXPECT_EQ(o.tracking.pose_rounds, FrontOptions{}.tracking.pose_rounds);
+  EXPECT_EQ(o.tracking.pose_solver, "lm");
+  EXPECT_EQ(FrontOptions{}.tracking.pose_solver, "ceres");
 }
 
 TEST(FrontOptions, OrbSlamStereoKeysSetTheVirtualBaselineAndCloseDepth) {
@@ -60,6 +62,7 @@ TEST(FrontOptions, InvalidValuesNameTheKey) {
   expect_error("ORBextractor.iniThFAST: 5\nORBextractor.minThFAST: 9\n", "ORBextractor.minThFAST");
   expect_error("tracking:\n  match_th_high: 20\n", "tracking.match_th_high");
   expect_error("tracking:\n  pose_rounds: abc\n", "tracking.pose_rounds");
+  expect_error("tracking:\n  pose_solver: gauss\n", "tracking.pose_solver");
   expect_error("mapping:\n  redundant_ratio: 1.5\n", "mapping.redundant_ratio");
 }
 
