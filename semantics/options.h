@@ -90,7 +90,9 @@ struct SemanticOptions {
   // a measurement that sees only the front of an object.
   std::map<std::string, std::array<double, 3>> class_sizes = {
       {"door", {0.9, 0.06, 2.05}}, {"chair", {0.5, 0.5, 0.9}},   {"bed", {0.95, 2.0, 0.6}},
-      {"cabinet", {0.45, 0.45, 0.8}}, {"wheelchair", {0.65, 1.0, 0.9}}, {"iv_pole", {0.5, 0.5, 1.8}}};
+      {"cabinet", {0.45, 0.45, 0.8}}, {"wheelchair", {0.65, 1.0, 0.9}}, {"iv_pole", {0.5, 0.5, 1.8}},
+      // Indoor COCO: a desktop screen on its stand (24 inch).
+      {"tv", {0.55, 0.15, 0.45}}};
 
   // Classes whose box is mostly background (measured on their nearest surface): a chair's box is
   // mostly what is seen between its legs and above its seat (the fullest window placed synthetic
