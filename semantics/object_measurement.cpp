@@ -41,14 +41,32 @@ Eigen::Matrix3d upright_rotation(const Eigen::Vector3d& up, const Eigen::Vector3
 
 namespace {
 
-// Whether the world point of pixel (x, y) is hidden by one of `occluders`.
-bool hidden_by(const std::vector<Occluder>& occluders, int x, int y, const Eigen::Vector3d& p_world, double inflate) {
+// An occluder ready for the per-pixel test: its image box, and when it has a measured 3-D box, the
+// world-to-box transform and the inflated half size.
+struct OccluderMask {
+  Eigen::Vector4d box;
+  bool by_box = true;
+  slam::SE3 world_to_box;
+  Eigen::Vector3d half_size;
+};
+
+std::vector<OccluderMask> occluder_masks(const std::vector<Occluder>& occluders, double inflate) {
+  std::vector<OccluderMask> masks;
   for (const auto& o : occluders) {
-    const auto& b = o.box;
+    OccluderMask m{o.box, !o.pose, {}, Eigen::Vector3d::Zero()};
+    if (o.pose) m.world_to_box = o.pose->pose.inverse(), m.half_size = 0.5 * o.pose->size.array() + inflate;
+    masks.push_back(m);
+  }
+  return masks;
+}
+
+// Whether the world point of pixel (x, y) is hidden by one of the occluders.
+bool hidden_by(const std::vector<OccluderMask>& masks, int x, int y, const Eigen::Vector3d& p_world) {
+  for (const auto& m : masks) {
+    const auto& b = m.box;
     if (x < b(0) || x > b(2) || y < b(1) || y > b(3)) continue;
-    if (!o.pose) return true;
-    const Eigen::Vector3d q = o.pose->pose.inverse() * p_world;
-    if ((q.cwiseAbs().array() <= (0.5 * o.pose->size.array() + inflate)).all()) return true;
+    if (m.by_box) return true;
+    if (((m.world_to_box * p_world).cwiseAbs().array() <= m.half_size.array()).all()) return true;
   }
   return false;
 }
@@ -88,6 +106,7 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   const int y1 = std::min(depth.rows - 1, static_cast<int>(std::ceil(box(3) - o.box_shrink * h)));
   const double area = static_cast<double>(x1 - x0 + 1) * (y1 - y0 + 1);
   const int stride = std::max(1, static_cast<int>(std::sqrt(area / o.target_samples)));
+  const std::vector<OccluderMask> masks = occluder_masks(occluders, o.occluder_inflate);
   std::vector<std::pair<double, Eigen::Vector3d>> samples;  // (depth, world point)
   for (int y = y0; y <= y1; y += stride) {
     const float* row = depth.ptr<float>(y);
@@ -95,7 +114,7 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
       const double z = row[x];
       if (!(z >= o.min_depth && z <= o.max_depth)) continue;
       const Eigen::Vector3d p = T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z);
-      if (hidden_by(occluders, x, y, p, o.occluder_inflate)) continue;
+      if (hidden_by(masks, x, y, p)) continue;
       samples.emplace_back(z, p);
     }
   }
