@@ -277,8 +277,7 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
   std::vector<bool> supports(n);
   for (size_t i = 0; i < n; ++i) supports[i] = options.support_classes.count(labels[i]) > 0;
   const auto nearer = nearer_overlapping_detections(depth, boxes, options.measurement, supports);
-  std::vector<double> z(n);
-  for (size_t i = 0; i < n; ++i) z[i] = box_median_depth(depth, boxes[i], options.measurement);
+  std::vector<double> z;  // whole-box median depths, only needed to break a cycle
   // Front to back: a detection is measured once all its occluders are; when the "nearer" relation
   // has a cycle (nearer by depth one way, by footprint the other), the nearest pending one goes next
   // and its unmeasured occluders hide their whole boxes.
@@ -288,6 +287,8 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
     for (size_t i = 0; i < n && next < 0; ++i)
       if (!done[i] && std::all_of(nearer[i].begin(), nearer[i].end(), [&](int j) { return done[j]; }))
         next = static_cast<int>(i);
+    if (next < 0 && z.empty())
+      for (size_t i = 0; i < n; ++i) z.push_back(box_median_depth(depth, boxes[i], options.measurement));
     if (next < 0)
       for (size_t i = 0; i < n; ++i)
         if (!done[i] && (next < 0 || z[i] < z[next])) next = static_cast<int>(i);
