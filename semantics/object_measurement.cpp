@@ -76,6 +76,23 @@ struct BorderCut {
   bool left = false, right = false, top = false, bottom = false;
 };
 
+// Whether nearer detections hide the box's lower end over at least `share` of its width (a cabinet
+// behind a bed): the visible part then ends at the occluder, not at the object's own end. Tested on
+// the pixels of the box's bottom row, as the per-pixel occlusion test sees them.
+bool bottom_occluded(const cv::Mat& depth, const slam::PinholeCamera& cam, const slam::SE3& T_wc,
+                     const Eigen::Vector4d& box, const std::vector<OccluderMask>& masks, double share) {
+  if (masks.empty()) return false;
+  const int y = std::clamp(static_cast<int>(box(3)) + 3, 0, depth.rows - 1);
+  const int x0 = std::max(0, static_cast<int>(std::ceil(box(0)))), x1 = std::min(depth.cols - 1, static_cast<int>(box(2)));
+  const int step = std::max(1, (x1 - x0) / 40);
+  int hidden = 0, total = 0;
+  for (int x = x0; x <= x1; x += step, ++total) {
+    const double z = depth.at<float>(y, x);
+    if (z > 0 && hidden_by(masks, x, y, T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z))) ++hidden;
+  }
+  return total > 0 && hidden >= share * total;
+}
+
 }  // namespace
 
 std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const slam::PinholeCamera& cam,
@@ -97,6 +114,10 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   BorderCut cut;
   cut.left = box(0) <= m, cut.top = box(1) <= m;
   cut.right = box(2) >= depth.cols - 1 - m, cut.bottom = box(3) >= depth.rows - 1 - m;
+  // Hidden at the bottom by a nearer detection: completed as a bottom cut is.
+  const std::vector<OccluderMask> masks = occluder_masks(occluders, o.occluder_inflate);
+  if (sized && o.occluded_bottom_share <= 1 && bottom_occluded(depth, cam, T_wc, box, masks, o.occluded_bottom_share))
+    cut.bottom = true;
   if (cut.left || cut.right || ((cut.top || cut.bottom) && (!sized || !o.complete_depth_with_class_size)) ||
       (cut.top && cut.bottom))
     return std::nullopt;
@@ -106,7 +127,6 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   const int y1 = std::min(depth.rows - 1, static_cast<int>(std::ceil(box(3) - o.box_shrink * h)));
   const double area = static_cast<double>(x1 - x0 + 1) * (y1 - y0 + 1);
   const int stride = std::max(1, static_cast<int>(std::sqrt(area / o.target_samples)));
-  const std::vector<OccluderMask> masks = occluder_masks(occluders, o.occluder_inflate);
   std::vector<std::pair<double, Eigen::Vector3d>> samples;  // (depth, world point)
   for (int y = y0; y <= y1; y += stride) {
     const float* row = depth.ptr<float>(y);
@@ -170,11 +190,21 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   if (!o.complete_depth_with_class_size || !sized) return ObjectPose{slam::SE3(R, R * (0.5 * (lo + hi))), size};
   const auto& cs = class_size->second;
 
-  // A box cut at the top or bottom: the sampled vertical extent ends short of the box's uncut edge
-  // by the trimmed margin (box_shrink and the 5 % tail, as a share of the sampled extent); from that
-  // real end the object spans the class's height.
-  const double trim = (o.box_shrink + 0.05 * (1 - 2 * o.box_shrink)) / (0.9 * (1 - 2 * o.box_shrink));
-  if (cut.bottom || cut.top) {
+  if (thin && o.thin_height_from_box_rows) {
+    // A thin class's lower part (legs, wheels, a base of spokes) gives few points and its top (a
+    // backrest, a hook) few more: the 5-95 % extent falls short of both ends. Its uncut box rows are
+    // its ends, at the depth of its points.
+    const double d = samples[(begin + end) / 2].first, u = 0.5 * (box(0) + box(2));
+    const auto row_height = [&](double v) { return (T_wc * (cam.unproject(Eigen::Vector2d(u, v)) * d)).dot(z); };
+    if (!cut.top) hi(2) = row_height(box(1));
+    if (!cut.bottom) lo(2) = row_height(box(3));
+    if (cut.bottom) lo(2) = hi(2) - std::max(hi(2) - lo(2), cs[2]);
+    if (cut.top) hi(2) = lo(2) + std::max(hi(2) - lo(2), cs[2]);
+  } else if (cut.bottom || cut.top) {
+    // A box cut at the top or bottom: the sampled vertical extent ends short of the box's uncut edge
+    // by the trimmed margin (box_shrink and the 5 % tail, as a share of the sampled extent); from that
+    // real end the object spans the class's height.
+    const double trim = (o.box_shrink + 0.05 * (1 - 2 * o.box_shrink)) / (0.9 * (1 - 2 * o.box_shrink));
     const double seen = (hi(2) - lo(2)) * (1 + 2 * trim), full = std::max(seen, cs[2]);
     if (cut.bottom)
       hi(2) += trim * (hi(2) - lo(2)), lo(2) = hi(2) - full;

@@ -31,6 +31,7 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(measurement.occluder_footprint_px, 0, 10000, "measurement.occluder_footprint_px");
   c(measurement.occluder_inflate, 0, 1, "measurement.occluder_inflate");
   c(measurement.thin_support, 0.001, 1, "measurement.thin_support");
+  c(measurement.occluded_bottom_share, 0, 2, "measurement.occluded_bottom_share");
   c(measurement.support_containment, 0, 1, "measurement.support_containment");
   c(measurement.support_area_ratio, 1, 1e6, "measurement.support_area_ratio");
   c(measurement.max_depth, 0.01, 1000, "measurement.max_depth");
@@ -79,6 +80,8 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(m, "semantics.measurement", "support_containment", o.measurement.support_containment, file);
   read_option(m, "semantics.measurement", "support_area_ratio", o.measurement.support_area_ratio, file);
   read_option(m, "semantics.measurement", "thin_support", o.measurement.thin_support, file);
+  read_option(m, "semantics.measurement", "occluded_bottom_share", o.measurement.occluded_bottom_share, file);
+  read_option(m, "semantics.measurement", "thin_height_from_box_rows", o.measurement.thin_height_from_box_rows, file);
   read_option(m, "semantics.measurement", "min_depth", o.measurement.min_depth, file);
   read_option(m, "semantics.measurement", "max_depth", o.measurement.max_depth, file);
   read_option(g, "semantics.groups", "split_distance", o.groups.split_distance, file);

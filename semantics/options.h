@@ -40,6 +40,9 @@ struct MeasurementOptions {
   double support_containment = 0.8;  // a box holding this share of mine, and
   double support_area_ratio = 4.0;   // this many times larger, is a support, not an occluder
   double thin_support = 0.08;     // thin classes: share of the points the nearest window must hold
+  double occluded_bottom_share = 0.5;  // a nearer box over this share of my bottom edge: completed as a bottom cut
+                                       // (above 1: never)
+  bool thin_height_from_box_rows = true;  // thin classes: vertical ends from the box rows at the points' depth
   double max_size_ratio = 1.6;    // extents beyond this times the class's largest size: wall or floor, no pose
   double min_depth = 0.2, max_depth = 10.0;
   bool complete_depth_with_class_size = true;  // push the centre back when only a front face is seen

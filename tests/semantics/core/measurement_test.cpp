@@ -114,6 +114,49 @@ TEST(Measurement, BottomCutBoxIsCompletedFromTheClassHeight) {
   EXPECT_NEAR(p->size.z(), 2.05, 0.02);
 }
 
+// A cabinet behind a bed: the bed hides the cabinet's lower half, so its visible part ends at the
+// bed, not at its own bottom. It is completed from the class height (0.8 m) down from its real top.
+TEST(Measurement, BottomOccludedBoxIsCompletedFromTheClassHeight) {
+  SemanticOptions o;
+  const Eigen::Vector3d up(0, -1, 0);
+  // Cabinet face at z = 4 m over x in [-0.25, 0.25], y (down) in [-0.4, 0.4]: u in [288, 351],
+  // v in [189.5, 289.5]. Bed face at z = 3 m from v = 240 down, wide: the cabinet shows v < 240.
+  cv::Mat d = scene(8.0, 4.0, 288, 351, 190, 290);
+  d(cv::Rect(200, 240, 240, 160)).setTo(3.0);
+  const Eigen::Vector4d cabinet(288, 190, 351, 239), bed(200, 240, 440, 400);
+  const auto p = measure_pose_from_depth(d, camera(), slam::SE3(), cabinet, up, "cabinet", o, {{bed, std::nullopt}});
+  ASSERT_TRUE(p);
+  // True centre height: y = 0 (the visible half alone would put it at y = -0.2).
+  EXPECT_NEAR(p->pose.translation().y(), 0.0, 0.04);
+  EXPECT_NEAR(p->size.z(), 0.8, 0.04);
+  // Without the occluder below it, the box is taken as the whole cabinet: its centre is the visible half's.
+  const auto alone = measure_pose_from_depth(d, camera(), slam::SE3(), cabinet, up, "cabinet", o);
+  ASSERT_TRUE(alone);
+  EXPECT_LT(alone->pose.translation().y(), -0.15);
+}
+
+// A chair gives points mostly on its seat and backrest, few on its legs: its height comes from the
+// box's rows at the points' depth, not from the 5-95 % extent of the points.
+TEST(Measurement, ThinClassHeightFromTheBoxRows) {
+  SemanticOptions o;
+  const Eigen::Vector3d up(0, -1, 0);
+  // Chair 0.85 m tall standing on a floor at y = 1.2 (camera 1.2 m up), front at z = 3: rows
+  // v = 239.5 + 500 y / 3 give the top (y = 0.35) at 297.8 and the feet at 439.5. Only the seat and
+  // back (y in [0.35, 0.8]) are drawn solid; the legs are two thin columns.
+  cv::Mat d(480, 640, CV_32F, cv::Scalar(9.0f));
+  d(cv::Rect(280, 298, 80, 76)).setTo(3.0);   // back and seat
+  d(cv::Rect(284, 374, 3, 66)).setTo(3.0);    // legs
+  d(cv::Rect(353, 374, 3, 66)).setTo(3.0);
+  const Eigen::Vector4d box(280, 298, 360, 439);
+  const auto p = measure_pose_from_depth(d, camera(), slam::SE3(), box, up, "chair", o);
+  ASSERT_TRUE(p);
+  EXPECT_NEAR(p->pose.translation().y(), 1.2 - 0.425, 0.04);
+  o.measurement.thin_height_from_box_rows = false;
+  const auto points_only = measure_pose_from_depth(d, camera(), slam::SE3(), box, up, "chair", o);
+  ASSERT_TRUE(points_only);
+  EXPECT_LT(points_only->pose.translation().y(), 1.2 - 0.425 - 0.06);  // the legs' few points barely count
+}
+
 TEST(Measurement, UpFromCameraPoses) {
   // Upright cameras looking along world x in a z-up world: camera y (down) = world -z.
   Eigen::Matrix3d R;
