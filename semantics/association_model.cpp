@@ -69,16 +69,44 @@ double AssociationModel::log_predictive(const hdp::ItemRef& item, const std::vec
   const int io = groups_[item.group][item.item];
   const GroupObject& obj = objects_[io];
   double best = kNegInf;
+  bool shares = false;
   Eigen::VectorXf mean_embedding;
   for (const auto& m : members) {
     const int mo = groups_[m.group][m.item];
     if (objects_[mo].label != obj.label) return kNegInf;  // class: landmarks hold one class
-    best = std::max(best, log_prior(io, mo));
+    if (!options_.landmark_mixture) best = std::max(best, log_prior(io, mo));
+    shares = shares || share_measurement(obj, objects_[mo]);
     const auto& e = objects_[mo].embedding;
     if (e.size() > 0) mean_embedding = mean_embedding.size() ? Eigen::VectorXf(mean_embedding + e) : e;
   }
+  if (options_.landmark_mixture) best = log_mixture_prior(io, members) + (shares ? std::log(options_.overlap_boost) : 0.0);
   if (mean_embedding.size() > 0 && mean_embedding.norm() > 0) mean_embedding.normalize();
   return best + appearance_term(obj.embedding, mean_embedding);
+}
+
+// Assoc. III-A.2 with the landmark's GMM taken as the equal-weight mixture of its group objects'
+// GMMs: the largest probability of the item's measurements under it. One stray member (a group
+// object with a measurement on its neighbour) then weighs 1/N, and cannot chain two objects.
+double AssociationModel::log_mixture_prior(int item_object, const std::vector<hdp::ItemRef>& members) const {
+  const GroupObject& a = objects_[item_object];
+  if (a.features.empty()) return log_new_;
+  std::vector<int> placed;
+  for (const auto& m : members) {
+    const int mo = groups_[m.group][m.item];
+    if (!gmms_[mo].empty()) placed.push_back(mo);
+  }
+  if (placed.empty()) return log_new_;
+  double best = kNegInf;
+  std::vector<double> logs(placed.size());
+  for (const auto& x : a.features) {
+    for (size_t k = 0; k < placed.size(); ++k) logs[k] = gmms_[placed[k]].log_density(x);
+    const double top = *std::max_element(logs.begin(), logs.end());
+    if (top == kNegInf) continue;
+    double sum = 0;
+    for (double l : logs) sum += std::exp(l - top);
+    best = std::max(best, top + std::log(sum / placed.size()));
+  }
+  return best;
 }
 
 double AssociationModel::log_predictive_new(const hdp::ItemRef&) const { return log_new_; }

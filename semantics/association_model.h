@@ -1,8 +1,9 @@
 // The model the HDP Gibbs sampler (hdp/) uses to associate group objects across keyframe groups
 // (Assoc. III-A.2): the prior that group object O^G_{n,i} joins landmark k is the largest GMM
-// probability of O^G_{n,i}'s measurements under the GMM (Assoc. Eq. 2-3) of one of k's group
-// objects, times 1.5 when they share measurements in overlapping keyframes; appearance (embedding
-// cosine) and class enter the likelihood.
+// probability of O^G_{n,i}'s measurements under k's GMM (Assoc. Eq. 2-3: the paper compares two group
+// objects; a landmark's GMM is the equal-weight mixture of its group objects' GMMs), times 1.5 when
+// they share measurements in overlapping keyframes; appearance (embedding cosine) and class enter
+// the likelihood.
 #pragma once
 
 #include <vector>
@@ -42,6 +43,8 @@ class AssociationModel : public hdp::CrfModel {
 
   // log of the prior term alone (max GMM probability, overlap boost) of `item` joining `member`.
   double log_prior(int item_object, int member_object) const;
+  // log of the prior term under the mixture of all members' GMMs (options.landmark_mixture).
+  double log_mixture_prior(int item_object, const std::vector<hdp::ItemRef>& members) const;
 
  private:
   const GroupObject& object(const hdp::ItemRef& r) const { return objects_[groups_[r.group][r.item]]; }

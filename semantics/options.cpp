@@ -94,6 +94,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(a, "semantics.association", "sigma_position", o.association.sigma_position, file);
   read_option(a, "semantics.association", "sigma_rotation", o.association.sigma_rotation, file);
   read_option(a, "semantics.association", "overlap_boost", o.association.overlap_boost, file);
+  read_option(a, "semantics.association", "landmark_mixture", o.association.landmark_mixture, file);
   read_option(a, "semantics.association", "new_landmark_distance", o.association.new_landmark_distance, file);
   read_option(a, "semantics.association", "appearance_weight", o.association.appearance_weight, file);
   read_option(a, "semantics.association", "appearance_neutral", o.association.appearance_neutral, file);

@@ -40,8 +40,8 @@ struct MeasurementOptions {
   double support_containment = 0.8;  // a box holding this share of mine, and
   double support_area_ratio = 4.0;   // this many times larger, is a support, not an occluder
   double thin_support = 0.08;     // thin classes: share of the points the nearest window must hold
-  double occluded_bottom_share = 0.5;  // a nearer box over this share of my bottom edge: completed as a bottom cut
-                                       // (above 1: never)
+  double occluded_bottom_share = 0.5;  // nearer detections' pixels under this share of my box's bottom edge:
+                                       // completed as a bottom cut (above 1: never)
   bool thin_height_from_box_rows = true;  // thin classes: vertical ends from the box rows at the points' depth
   double max_size_ratio = 1.6;    // extents beyond this times the class's largest size: wall or floor, no pose
   double min_depth = 0.2, max_depth = 10.0;
@@ -66,6 +66,8 @@ struct AssociationOptions {
   double sigma_position = 0.25;       // m, GMM component std of each position coordinate
   double sigma_rotation = 1.2;        // rad (wide: square footprints have no stable yaw), GMM component std of each rotation-vector coordinate
   double overlap_boost = 1.5;         // prior x1.5 when the item shares measurements with the landmark
+  bool landmark_mixture = true;       // a landmark's GMM is the mixture of its group objects' GMMs
+                                      // (false: the best single group object's)
   double new_landmark_distance = 0.8; // m: a landmark this far away scores like a new one
   double appearance_weight = 4.0;     // log-likelihood weight of the embedding cosine
   double appearance_neutral = 0.6;    // cosine that neither favours nor penalises joining

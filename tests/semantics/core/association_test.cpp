@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "semantics/association_model.h"
 #include "semantics/object_association.h"
 
 namespace wardmap::semantics {
@@ -108,6 +109,42 @@ TEST(Association, ClassesNeverShareALandmark) {
   const AssociationResult r = associate_objects(ms, groups_of(40, o.groups.size, o.groups.overlap), o);
   for (const auto& l : r.landmarks)
     for (int id : l.measurements) EXPECT_EQ(ms[id].label, l.label);
+}
+
+// A landmark's GMM is the mixture of its group objects' GMMs: one stray group object (measured on its
+// neighbour, 0.6 m away) weighs 1/N in it, so it cannot pull the neighbour's group objects in. With
+// the best single member's GMM (landmark_mixture: false) it would attract them fully.
+TEST(Association, StrayMemberWeighsOneNthOfTheLandmarkPrior) {
+  const auto object = [](int id, double x) {
+    GroupObject g;
+    g.group = id;
+    g.label = "chair";
+    g.measurements = {id};
+    g.keyframe_measurements = {{id, id}};
+    g.features = {pose_feature(ObjectPose{slam::SE3(Eigen::Quaterniond::Identity(), Eigen::Vector3d(x, 0, 0.4)),
+                                          Eigen::Vector3d(0.5, 0.5, 0.85)})};
+    return g;
+  };
+  // Objects 0-4 at x = 0 and a stray 5 at x = 0.6 form landmark A; 6-10 at x = 0.6 form B; 11 is
+  // the item, at x = 0.6.
+  std::vector<GroupObject> objects;
+  std::vector<std::vector<int>> groups;
+  for (int i = 0; i < 12; ++i) {
+    objects.push_back(object(i, i < 5 ? 0.0 : 0.6));
+    groups.push_back({i});
+  }
+  std::vector<hdp::ItemRef> a, b;
+  for (int i = 0; i < 6; ++i) a.push_back({i, 0});
+  for (int i = 6; i < 11; ++i) b.push_back({i, 0});
+  const hdp::ItemRef item{11, 0};
+  AssociationOptions o;
+  const AssociationModel mixture(objects, groups, o);
+  // A: (1 + 5 g(0.6 m)) / 6 of B's density, g the Gaussian falloff of one component.
+  const double g = std::exp(-0.5 * std::pow(0.6 / o.sigma_position, 2));
+  EXPECT_NEAR(mixture.log_predictive(item, b) - mixture.log_predictive(item, a), std::log(6.0 / (1 + 5 * g)), 1e-6);
+  o.landmark_mixture = false;
+  const AssociationModel best_member(objects, groups, o);
+  EXPECT_NEAR(best_member.log_predictive(item, b), best_member.log_predictive(item, a), 1e-9);
 }
 
 }  // namespace
