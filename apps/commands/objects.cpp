@@ -67,6 +67,9 @@ void compare(CompareArgs& a) {
               "Object_GT", "pos.err", "max err", "ID sw.");
   std::printf("%s\n", std::string(110, '-').c_str());
   for (const auto& s : a.sequences) {
+    // The folder's name, also when given with a trailing slash (a shell completion).
+    const fs::path p = fs::path(s).lexically_normal();
+    const std::string name = (p.has_filename() ? p.filename() : p.parent_path().filename()).string();
     for (const char* mode : {"hdp-only", "hierarchical"}) {
       SemanticJob job = a.job;
       job.sequence = s;
@@ -76,7 +79,7 @@ void compare(CompareArgs& a) {
       const SemanticRun r = run_semantic_job(job);
       if (!r.evaluation) throw InputError(s, "no object ground truth (objects.json + annotations.jsonl): use a wardmap synth sequence");
       const auto& e = *r.evaluation;
-      std::printf("%-28s | %-12s | %8.2f%% | %7d | %9d | %6.3f m | %6.3f m | %7d\n", fs::path(s).filename().c_str(), mode,
+      std::printf("%-28s | %-12s | %8.2f%% | %7d | %9d | %6.3f m | %6.3f m | %7d\n", name.c_str(), mode,
                   e.association_accuracy, e.landmarks, e.objects_seen, e.position_error_mean, e.position_error_max,
                   e.id_switches);
       std::fflush(stdout);
