@@ -82,7 +82,7 @@ struct BorderCut {
 bool bottom_occluded(const cv::Mat& depth, const slam::PinholeCamera& cam, const slam::SE3& T_wc,
                      const Eigen::Vector4d& box, const std::vector<OccluderMask>& masks, double share) {
   if (masks.empty()) return false;
-  const int y = std::clamp(static_cast<int>(box(3)) + 3, 0, depth.rows - 1);
+  const int y = std::clamp(static_cast<int>(box(3)) - 2, 0, depth.rows - 1);
   const int x0 = std::max(0, static_cast<int>(std::ceil(box(0)))), x1 = std::min(depth.cols - 1, static_cast<int>(box(2)));
   const int step = std::max(1, (x1 - x0) / 40);
   int hidden = 0, total = 0;
