@@ -1,7 +1,8 @@
 // ORB features on a scale pyramid: FAST corners per level with a per-cell threshold fallback
 // (iniThFAST, then minThFAST where a cell has none), a quadtree spread to the level's share of
-// nFeatures, orientation by intensity centroid and rBRIEF descriptors (cv::ORB::compute on the
-// given keypoints). Keypoints are returned in level-0 pixels, with `octave` = pyramid level.
+// nFeatures, orientation by intensity centroid and rBRIEF descriptors on the Gaussian-smoothed
+// level (bit for bit what cv::ORB::compute gives for the same keypoints). Keypoints are returned in
+// level-0 pixels, with `octave` = pyramid level.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -29,15 +30,27 @@ class OrbExtractor {
  private:
   std::vector<cv::Mat> build_pyramid(const cv::Mat& grey) const;
   std::vector<cv::KeyPoint> detect_level(const cv::Mat& level_image, int level) const;
+  // Keypoints of one level (level pixels) and their descriptors.
+  std::vector<cv::KeyPoint> extract_level(const cv::Mat& level_image, int level, cv::Mat& descriptors) const;
+  // intensity_centroid_angle with this extractor's disc (radius 15), vectorised where it can be.
+  float centroid_angle(const cv::Mat& level_image, cv::Point2f pt) const;
 
   OrbOptions options_;
   ScalePyramid pyramid_;
   std::vector<int> features_per_level_;
   std::vector<int> circle_half_width_;  // half-width of the orientation patch per row offset
-  cv::Ptr<cv::ORB> descriptor_;
 };
 
 // Orientation (degrees, [0, 360)) of the intensity centroid of the disc of radius `radius` around pt.
 float intensity_centroid_angle(const cv::Mat& image, cv::Point2f pt, const std::vector<int>& half_width);
+
+// The smoothing rBRIEF samples: a 7x7 Gaussian of sigma 2 (BORDER_REFLECT_101), rounded as cv::ORB's.
+void smooth_level(const cv::Mat& level, cv::Mat& blurred);
+
+// rBRIEF (the 256-pair ORB pattern, 31x31 patch, steered by each keypoint's angle) of `keypoints`
+// (pixels of `blurred`, at least 19 pixels from its border) into rows first_row.. of `descriptors`
+// (N x 32, CV_8U). `blurred` comes from smooth_level.
+void compute_orb_descriptors(const cv::Mat& blurred, const std::vector<cv::KeyPoint>& keypoints,
+                             cv::Mat& descriptors, int first_row = 0);
 
 }  // namespace wardmap::slam

@@ -1,31 +1,49 @@
 #include "slam/front/quadtree_distribution.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace wardmap::slam {
 
 namespace {
 
+// A node's members are the range [begin, end) of one index array; a split partitions its range
+// stably into the four quadrants' ranges, so a child lists its members in the parent's order.
 struct Node {
   cv::Rect2f box;
-  std::vector<int> members;
-  bool leaf() const { return members.size() <= 1 || box.width < 2.0f || box.height < 2.0f; }
+  int begin = 0, end = 0;
+  int size() const { return end - begin; }
+  bool leaf() const { return size() <= 1 || box.width < 2.0f || box.height < 2.0f; }
 };
 
-// Splits a node into up to four non-empty children.
-void split(const Node& n, const std::vector<cv::KeyPoint>& kps, std::vector<Node>& out) {
+// Splits a node into up to four non-empty children (quadrant order), appended to `out`.
+void split(const Node& n, const std::vector<cv::Point2f>& pts, std::vector<int>& index, std::vector<int>& scratch,
+           std::vector<unsigned char>& quadrant, std::vector<Node>& out) {
   const float hw = n.box.width / 2, hh = n.box.height / 2;
-  Node c[4];
-  for (int i = 0; i < 4; ++i) c[i].box = cv::Rect2f(n.box.x + (i % 2) * hw, n.box.y + (i / 2) * hh, hw, hh);
-  for (int m : n.members) {
-    const cv::Point2f& p = kps[m].pt;
-    const int ix = p.x >= n.box.x + hw ? 1 : 0;
-    const int iy = p.y >= n.box.y + hh ? 1 : 0;
-    c[iy * 2 + ix].members.push_back(m);
+  const float mx = n.box.x + hw, my = n.box.y + hh;
+  std::array<int, 4> count{};
+  for (int i = n.begin; i < n.end; ++i) {
+    const cv::Point2f& p = pts[static_cast<size_t>(index[static_cast<size_t>(i)])];
+    const int q = (p.y >= my ? 2 : 0) + (p.x >= mx ? 1 : 0);
+    quadrant[static_cast<size_t>(i)] = static_cast<unsigned char>(q);
+    ++count[static_cast<size_t>(q)];
   }
-  for (auto& ch : c)
-    if (!ch.members.empty()) out.push_back(std::move(ch));
+  std::array<int, 4> start{};
+  start[0] = n.begin;
+  for (int q = 1; q < 4; ++q) start[q] = start[q - 1] + count[q - 1];
+  std::array<int, 4> fill = start;
+  for (int i = n.begin; i < n.end; ++i)
+    scratch[static_cast<size_t>(fill[quadrant[static_cast<size_t>(i)]]++)] = index[static_cast<size_t>(i)];
+  std::copy(scratch.begin() + n.begin, scratch.begin() + n.end, index.begin() + n.begin);
+  for (int q = 0; q < 4; ++q) {
+    if (count[static_cast<size_t>(q)] == 0) continue;
+    Node c;
+    c.box = cv::Rect2f(n.box.x + (q % 2) * hw, n.box.y + (q / 2) * hh, hw, hh);
+    c.begin = start[static_cast<size_t>(q)];
+    c.end = c.begin + count[static_cast<size_t>(q)];
+    out.push_back(c);
+  }
 }
 
 }  // namespace
@@ -33,22 +51,45 @@ void split(const Node& n, const std::vector<cv::KeyPoint>& kps, std::vector<Node
 std::vector<cv::KeyPoint> distribute_quadtree(const std::vector<cv::KeyPoint>& kps, const cv::Rect2f& region,
                                               int target) {
   if (kps.empty() || target <= 0) return {};
+  const int n = static_cast<int>(kps.size());
+  std::vector<cv::Point2f> pts(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k) pts[static_cast<size_t>(k)] = kps[static_cast<size_t>(k)].pt;
+
   // Initial square-ish nodes side by side so that the first splits produce square cells.
   const int n_init = std::max(1, static_cast<int>(std::lround(region.width / std::max(region.height, 1.0f))));
   const float w = region.width / n_init;
-  std::vector<Node> nodes(n_init);
-  for (int i = 0; i < n_init; ++i) nodes[i].box = cv::Rect2f(region.x + i * w, region.y, w, region.height);
-  for (int k = 0; k < static_cast<int>(kps.size()); ++k) {
-    const int i = std::clamp(static_cast<int>((kps[k].pt.x - region.x) / w), 0, n_init - 1);
-    nodes[i].members.push_back(k);
+  std::vector<int> column(static_cast<size_t>(n));
+  std::vector<int> count(static_cast<size_t>(n_init), 0);
+  for (int k = 0; k < n; ++k) {
+    const int i = std::clamp(static_cast<int>((pts[static_cast<size_t>(k)].x - region.x) / w), 0, n_init - 1);
+    column[static_cast<size_t>(k)] = i;
+    ++count[static_cast<size_t>(i)];
   }
-  nodes.erase(std::remove_if(nodes.begin(), nodes.end(), [](const Node& n) { return n.members.empty(); }), nodes.end());
+  std::vector<int> index(static_cast<size_t>(n)), scratch(static_cast<size_t>(n));
+  std::vector<unsigned char> quadrant(static_cast<size_t>(n));
+  std::vector<Node> nodes;
+  {
+    std::vector<int> fill(static_cast<size_t>(n_init));
+    int start = 0;
+    for (int i = 0; i < n_init; ++i) {
+      fill[static_cast<size_t>(i)] = start;
+      if (count[static_cast<size_t>(i)] > 0) {
+        Node node;
+        node.box = cv::Rect2f(region.x + i * w, region.y, w, region.height);
+        node.begin = start;
+        node.end = start + count[static_cast<size_t>(i)];
+        nodes.push_back(node);
+      }
+      start += count[static_cast<size_t>(i)];
+    }
+    for (int k = 0; k < n; ++k) index[static_cast<size_t>(fill[static_cast<size_t>(column[static_cast<size_t>(k)])]++)] = k;
+  }
 
+  std::vector<Node> next;
   while (static_cast<int>(nodes.size()) < target) {
     // Split the most populated nodes first so that the last, partial round refines the dense areas.
-    std::stable_sort(nodes.begin(), nodes.end(),
-                     [](const Node& a, const Node& b) { return a.members.size() > b.members.size(); });
-    std::vector<Node> next;
+    std::stable_sort(nodes.begin(), nodes.end(), [](const Node& a, const Node& b) { return a.size() > b.size(); });
+    next.clear();
     next.reserve(nodes.size() * 4);
     bool any_split = false;
     size_t i = 0;
@@ -56,24 +97,26 @@ std::vector<cv::KeyPoint> distribute_quadtree(const std::vector<cv::KeyPoint>& k
       const int remaining_count = static_cast<int>(next.size() + (nodes.size() - i));
       if (remaining_count >= target) break;
       if (nodes[i].leaf()) {
-        next.push_back(std::move(nodes[i]));
+        next.push_back(nodes[i]);
         continue;
       }
-      split(nodes[i], kps, next);
+      split(nodes[i], pts, index, scratch, quadrant, next);
       any_split = true;
     }
-    for (; i < nodes.size(); ++i) next.push_back(std::move(nodes[i]));
+    for (; i < nodes.size(); ++i) next.push_back(nodes[i]);
     nodes.swap(next);
     if (!any_split) break;
   }
 
   std::vector<cv::KeyPoint> out;
   out.reserve(nodes.size());
-  for (const Node& n : nodes) {
-    int best = n.members.front();
-    for (int m : n.members)
-      if (kps[m].response > kps[best].response) best = m;
-    out.push_back(kps[best]);
+  for (const Node& node : nodes) {
+    int best = index[static_cast<size_t>(node.begin)];
+    for (int m = node.begin; m < node.end; ++m) {
+      const int k = index[static_cast<size_t>(m)];
+      if (kps[static_cast<size_t>(k)].response > kps[static_cast<size_t>(best)].response) best = k;
+    }
+    out.push_back(kps[static_cast<size_t>(best)]);
   }
   return out;
 }
