@@ -77,19 +77,25 @@ struct BorderCut {
 };
 
 // Whether nearer detections hide the box's lower end over at least `share` of its width (a cabinet
-// behind a bed): the visible part then ends at the occluder, not at the object's own end. Tested on
-// the pixels of the box's bottom row, as the per-pixel occlusion test sees them.
+// behind a bed): the visible part then ends at the occluder, not at the object's own end. A column
+// counts when the pixel just below the box's bottom edge, or on its last rows (detector boxes are a
+// few pixels off), is hidden as the per-pixel occlusion test sees it.
 bool bottom_occluded(const cv::Mat& depth, const slam::PinholeCamera& cam, const slam::SE3& T_wc,
                      const Eigen::Vector4d& box, const std::vector<OccluderMask>& masks, double share) {
   if (masks.empty()) return false;
-  const int y = std::clamp(static_cast<int>(box(3)) - 2, 0, depth.rows - 1);
+  const int rows[2] = {std::clamp(static_cast<int>(box(3)) + 3, 0, depth.rows - 1),
+                       std::clamp(static_cast<int>(box(3)) - 2, 0, depth.rows - 1)};
   const int x0 = std::max(0, static_cast<int>(std::ceil(box(0)))), x1 = std::min(depth.cols - 1, static_cast<int>(box(2)));
   const int step = std::max(1, (x1 - x0) / 40);
   int hidden = 0, total = 0;
-  for (int x = x0; x <= x1; x += step, ++total) {
-    const double z = depth.at<float>(y, x);
-    if (z > 0 && hidden_by(masks, x, y, T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z))) ++hidden;
-  }
+  for (int x = x0; x <= x1; x += step, ++total)
+    for (int y : rows) {
+      const double z = depth.at<float>(y, x);
+      if (z > 0 && hidden_by(masks, x, y, T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z))) {
+        ++hidden;
+        break;
+      }
+    }
   return total > 0 && hidden >= share * total;
 }
 
