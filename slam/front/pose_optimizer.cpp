@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
+#include <tuple>
 
 #include <Eigen/Cholesky>
 
@@ -121,18 +123,34 @@ bool solve_levenberg_marquardt(SE3& T, const std::vector<ActiveObservation>& act
   return true;
 }
 
-// The same round with Ceres (analytic PosePerturbationCost around the round's starting pose).
+// The same round with Ceres (analytic PosePerturbationCost around the round's starting pose). The
+// problem does not own its cost and loss functions: they live in this frame's containers (one Huber
+// loss per threshold), which saves two heap objects per observation and round.
 void solve_ceres(SE3& T, const std::vector<ActiveObservation>& active, const PinholeIntrinsics& k, int iterations) {
   double delta[6] = {0, 0, 0, 0, 0, 0};
   PerturbationCache cache;
-  ceres::Problem problem;
+  ceres::Problem::Options po;
+  po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(po);
   problem.AddParameterBlock(delta, 6);
+  std::deque<PosePerturbationCost<2>> mono;
+  std::deque<PosePerturbationCost<3>> stereo;
+  std::deque<std::pair<double, ceres::HuberLoss>> losses;  // (chi2 threshold, loss)
   for (const ActiveObservation& a : active) {
-    const bool stereo = a.o->right_u >= 0;
-    ceres::CostFunction* cost =
-        stereo ? static_cast<ceres::CostFunction*>(new PosePerturbationCost<3>(k, T, *a.o, &cache))
-               : new PosePerturbationCost<2>(k, T, *a.o, &cache);
-    ceres::LossFunction* loss = a.huber_b > 0 ? new ceres::HuberLoss(std::sqrt(a.huber_b)) : nullptr;
+    ceres::CostFunction* cost = nullptr;
+    if (a.o->right_u >= 0) cost = &stereo.emplace_back(k, T, *a.o, &cache);
+    else cost = &mono.emplace_back(k, T, *a.o, &cache);
+    ceres::LossFunction* loss = nullptr;
+    if (a.huber_b > 0) {
+      auto it = std::find_if(losses.begin(), losses.end(), [&](const auto& l) { return l.first == a.huber_b; });
+      if (it == losses.end()) {
+        losses.emplace_back(std::piecewise_construct, std::forward_as_tuple(a.huber_b),
+                            std::forward_as_tuple(std::sqrt(a.huber_b)));
+        it = std::prev(losses.end());
+      }
+      loss = &it->second;
+    }
     problem.AddResidualBlock(cost, loss, delta);
   }
   ceres::Solver::Options so;
