@@ -129,14 +129,15 @@ bool solve_levenberg_marquardt(SE3& T, const std::vector<ActiveObservation>& act
 void solve_ceres(SE3& T, const std::vector<ActiveObservation>& active, const PinholeIntrinsics& k, int iterations) {
   double delta[6] = {0, 0, 0, 0, 0, 0};
   PerturbationCache cache;
+  // Declared before the problem, so they outlive it.
+  std::deque<PosePerturbationCost<2>> mono;
+  std::deque<PosePerturbationCost<3>> stereo;
+  std::deque<std::pair<double, ceres::HuberLoss>> losses;  // (chi2 threshold, loss)
   ceres::Problem::Options po;
   po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(po);
   problem.AddParameterBlock(delta, 6);
-  std::deque<PosePerturbationCost<2>> mono;
-  std::deque<PosePerturbationCost<3>> stereo;
-  std::deque<std::pair<double, ceres::HuberLoss>> losses;  // (chi2 threshold, loss)
   for (const ActiveObservation& a : active) {
     ceres::CostFunction* cost = nullptr;
     if (a.o->right_u >= 0) cost = &stereo.emplace_back(k, T, *a.o, &cache);
