@@ -75,7 +75,7 @@ double AssociationModel::log_predictive(const hdp::ItemRef& item, const std::vec
     const int mo = groups_[m.group][m.item];
     if (objects_[mo].label != obj.label) return kNegInf;  // class: landmarks hold one class
     if (!options_.landmark_mixture) best = std::max(best, log_prior(io, mo));
-    shares = shares || share_measurement(obj, objects_[mo]);
+    else shares = shares || share_measurement(obj, objects_[mo]);  // the mixture's overlap boost
     const auto& e = objects_[mo].embedding;
     if (e.size() > 0) mean_embedding = mean_embedding.size() ? Eigen::VectorXf(mean_embedding + e) : e;
   }
