@@ -86,13 +86,20 @@ void LocalMapper::process(const std::shared_ptr<KeyFrame>& kf) {
   lap(stats_.t_cull);
   triangulate_with_neighbours(kf);
   lap(stats_.t_triangulate);
-  fuse_with_neighbours(kf);
+  // As ORB-SLAM's local mapping does: while more keyframes wait (the worker is behind the tracker),
+  // fusion, local BA and keyframe culling are left for later keyframes; the tracker needs the
+  // waiting keyframes' points first. Inline mapping never has keyframes waiting here.
+  const auto behind = [this] { return worker_.joinable() && !queue_.empty(); };
+  if (!behind()) fuse_with_neighbours(kf);
+  else ++stats_.deferred;
   lap(stats_.t_fuse);
-  if (submap_->num_keyframes() > 2)
-    stats_.last_ba = local_bundle_adjustment(kf, *submap_, camera_, options_, lock.owns_lock() ? &lock : nullptr);
-  lap(stats_.t_ba);
-  if (options_.mapping.keyframe_culling) cull_keyframes(kf);
-  lap(stats_.t_cull_keyframes);
+  if (!behind()) {
+    if (submap_->num_keyframes() > 2)
+      stats_.last_ba = local_bundle_adjustment(kf, *submap_, camera_, options_, lock.owns_lock() ? &lock : nullptr);
+    lap(stats_.t_ba);
+    if (options_.mapping.keyframe_culling) cull_keyframes(kf);
+    lap(stats_.t_cull_keyframes);
+  }
   kf->not_erase = false;
   ++stats_.keyframes;
 }

@@ -30,6 +30,7 @@ struct LocalMapperStats {
   int culled_points = 0;
   int culled_keyframes = 0;
   int fused = 0;
+  int deferred = 0;  // keyframes mapped without fusion, BA and culling: the threaded mapper was behind
   LocalBAResult last_ba;
   // Wall time spent per stage (seconds, summed over keyframes).
   double t_register = 0, t_cull = 0, t_triangulate = 0, t_fuse = 0, t_ba = 0, t_cull_keyframes = 0;

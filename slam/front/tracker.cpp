@@ -69,6 +69,7 @@ TrackingOutcome Tracker::track(Frame& frame) {
 
   bool ok = false;
   if (state_ == TrackingState::kTracking) {
+    replace_fused_points(*last_frame_);
     ok = velocity_ && track_with_motion_model(frame);
     if (!ok) ok = track_reference_keyframe(frame);
   } else if (vocabulary_) {
@@ -283,6 +284,13 @@ int Tracker::optimise_frame_pose(Frame& frame) {
   frame.set_pose_cw(est.T_cw);
   for (size_t k = 0; k < slot.size(); ++k) frame.outlier[slot[k]] = est.inlier[k] ? 0 : 1;
   return est.inliers;
+}
+
+void Tracker::replace_fused_points(Frame& frame) {
+  // ORB-SLAM's CheckReplacedInLastFrame: the mapper fuses duplicate points; the frame keeps the
+  // survivor instead of a point that is gone.
+  for (auto& mp : frame.map_points)
+    for (int hops = 0; mp && mp->bad() && hops < 8; ++hops) mp = mp->replaced_by();
 }
 
 bool Tracker::track_with_motion_model(Frame& frame) {

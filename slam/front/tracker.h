@@ -63,6 +63,7 @@ class Tracker {
   // submap cleared) when bundle adjustment leaves too few points.
   bool create_initial_map(Frame& first, Frame& second, const std::vector<int>& matches12,
                           const struct TwoViewReconstruction& r);
+  static void replace_fused_points(Frame& frame);
   bool track_with_motion_model(Frame& frame);
   bool track_reference_keyframe(Frame& frame);
   bool track_local_map(Frame& frame, int& inliers);

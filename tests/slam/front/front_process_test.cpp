@@ -124,7 +124,9 @@ TEST(FrontProcess, RelocalisesInTheSameSubmapAfterBlindFrames) {
     const FrameResult r = front.process(f);
     relocalised += r.relocalised ? 1 : 0;
     tracked += r.tracked ? 1 : 0;
-    if (i == 30) EXPECT_TRUE(r.relocalised) << to_string(r.state);
+    if (i == 30) {
+      EXPECT_TRUE(r.relocalised) << to_string(r.state);
+    }
     EXPECT_EQ(r.submap, 0);
     if (r.tracked) {
       const SE3 T_wc_gt = reader->ground_truth().poses[i];
