@@ -116,10 +116,20 @@ void Tracker::apply_match(Track& t, const Detection& d) {
 }
 
 std::vector<int> Tracker::update(const std::vector<Detection>& detections, double dt) {
+  return update(detections, dt, BoxPredictor());
+}
+
+std::vector<int> Tracker::update(const std::vector<Detection>& detections, double dt,
+                                 const BoxPredictor& predicted_box) {
   ++frame_;
   for (Track& t : tracks_) {
     if (t.state != TrackState::kTracked) t.kalman.mean(7) = 0;  // FairMOT: no height velocity when not tracked
     kf_.predict(t.kalman, dt);
+    if (!predicted_box) continue;
+    if (const auto box = predicted_box(t); box && valid_box(*box)) {
+      t.kalman.mean.head<4>() = corners_to_xyah(*box);
+      t.kalman.mean.tail<4>().setZero();
+    }
   }
   std::vector<int> result(detections.size(), -1);
   std::vector<int> open_dets;  // indices into detections still unmatched

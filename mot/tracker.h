@@ -11,6 +11,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -83,6 +84,13 @@ class Tracker {
   // unmatched and too weak to start a track). Tentative tracks' ids are returned too: they are
   // stable, and is_confirmed() tells them apart.
   std::vector<int> update(const std::vector<Detection>& detections, double dt = 1.0);
+
+  // The same, with the camera's motion compensated: after the Kalman prediction, a track for which
+  // `predicted_box` returns a box (corners) is moved there, with no image velocity left (what moves
+  // a static object in the image is the camera, which the caller knows). Others keep the Kalman
+  // prediction.
+  using BoxPredictor = std::function<std::optional<Eigen::Vector4d>(const Track&)>;
+  std::vector<int> update(const std::vector<Detection>& detections, double dt, const BoxPredictor& predicted_box);
 
   // Live tracks (tentative, tracked and lost), ordered by id.
   const std::vector<Track>& tracks() const { return tracks_; }

@@ -90,12 +90,34 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 std::vector<std::pair<int, int>> track_in_group(const std::vector<int>& group_keyframes,
                                                 const std::vector<std::vector<int>>& by_keyframe,
                                                 const std::vector<ObjectMeasurement>& measurements,
-                                                const mot::TrackerOptions& options) {
+                                                const mot::TrackerOptions& options, const KeyframeViews* views) {
   mot::Tracker tracker(options);
   std::map<std::string, int> classes;
   std::vector<std::pair<int, int>> out;  // (measurement id, track id)
+  // Per track: a world point on its last box's centre ray, at the depth of its last measured pose
+  // (the ray's depth is kept when a later box has no pose), and that box's size and depth.
+  struct Anchor {
+    Eigen::Vector3d p_world;
+    double width = 0, height = 0, depth = 0;
+  };
+  std::map<int, Anchor> anchors;
+  const auto known = [&](int kf) { return views && kf >= 0 && kf < static_cast<int>(views->T_wc.size()); };
   for (int kf : group_keyframes) {
     if (kf < 0 || kf >= static_cast<int>(by_keyframe.size())) continue;
+    mot::Tracker::BoxPredictor predict;
+    slam::SE3 T_cw;
+    if (known(kf)) {
+      T_cw = views->T_wc[kf].inverse();
+      predict = [&](const mot::Track& t) -> std::optional<Eigen::Vector4d> {
+        const auto a = anchors.find(t.id);
+        if (a == anchors.end()) return std::nullopt;
+        const Eigen::Vector3d pc = T_cw * a->second.p_world;
+        if (pc.z() < 0.1) return std::nullopt;
+        const Eigen::Vector2d c = views->camera.project(pc);
+        const double k = a->second.depth / pc.z(), hw = 0.5 * k * a->second.width, hh = 0.5 * k * a->second.height;
+        return Eigen::Vector4d(c.x() - hw, c.y() - hh, c.x() + hw, c.y() + hh);
+      };
+    }
     std::vector<mot::Detection> dets;
     for (int id : by_keyframe[kf]) {
       const ObjectMeasurement& m = measurements[id];
@@ -107,14 +129,27 @@ std::vector<std::pair<int, int>> track_in_group(const std::vector<int>& group_ke
       d.user_index = id;
       dets.push_back(std::move(d));
     }
-    const std::vector<int> tracks = tracker.update(dets);
+    const std::vector<int> tracks = tracker.update(dets, 1.0, predict);
     for (size_t i = 0; i < dets.size(); ++i) out.emplace_back(dets[i].user_index, tracks[i]);
+    if (!known(kf)) continue;
+    for (size_t i = 0; i < dets.size(); ++i) {
+      if (tracks[i] < 0) continue;
+      const ObjectMeasurement& m = measurements[dets[i].user_index];
+      const auto a = anchors.find(tracks[i]);
+      double depth = 0;
+      if (m.pose) depth = (T_cw * m.pose->pose.translation()).z();
+      else if (a != anchors.end()) depth = (T_cw * a->second.p_world).z();
+      if (!(depth > 0.1)) continue;
+      const Eigen::Vector2d centre(0.5 * (m.box(0) + m.box(2)), 0.5 * (m.box(1) + m.box(3)));
+      anchors[tracks[i]] = Anchor{views->T_wc[kf] * (views->camera.unproject(centre) * depth), m.box(2) - m.box(0),
+                                  m.box(3) - m.box(1), depth};
+    }
   }
   return out;
 }
 
 AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, const std::vector<std::vector<int>>& groups,
-                                    const SemanticOptions& options) {
+                                    const SemanticOptions& options, const KeyframeViews* views) {
   const bool hdp_only = options.association.mode == "hdp-only";
   AssociationResult r;
   r.landmark_of.assign(ms.size(), -1);
@@ -144,7 +179,8 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   } else {
     for (size_t n = 0; n < groups.size(); ++n) {
       std::map<int, std::vector<int>> tracks;
-      for (const auto& [id, track] : track_in_group(groups[n], by_keyframe, ms, options.tracker)) {
+      for (const auto& [id, track] :
+           track_in_group(groups[n], by_keyframe, ms, options.tracker, options.groups.camera_motion ? views : nullptr)) {
         r.track_of[id] = track;
         r.group_of[id] = static_cast<int>(n);
         if (track >= 0) tracks[track].push_back(id);

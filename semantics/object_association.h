@@ -9,6 +9,8 @@
 #include "semantics/association_model.h"
 #include "semantics/object_measurement.h"
 #include "semantics/options.h"
+#include "slam/core/camera.h"
+#include "slam/core/se3.h"
 
 namespace wardmap::semantics {
 
@@ -30,17 +32,29 @@ struct AssociationResult {
   double mot_seconds = 0, hdp_seconds = 0, pose_selection_seconds = 0;  // stage times
 };
 
+// Where the keyframes were taken: with it, MOT predicts a track's box in the next keyframe from the
+// camera's motion (groups.camera_motion); without it, from the Kalman filter's image velocity only.
+struct KeyframeViews {
+  slam::PinholeCamera camera;
+  std::vector<slam::SE3> T_wc;  // per keyframe index
+};
+
 // MOT inside one keyframe group (Assoc. III-A.1): runs a fresh tracker over the group's keyframes
 // in order; returns for every measurement of those keyframes its track id (-1 when the tracker
-// dropped it). `by_keyframe[k]` lists the measurement ids of keyframe k.
+// dropped it). `by_keyframe[k]` lists the measurement ids of keyframe k. With `views`, a track's
+// box is predicted by moving its last box's centre ray, at the depth of its last measured pose,
+// into the next keyframe (its size scaled by the depth ratio): a quick pan moves every box by more
+// than the spacing of identical chairs side by side, which an image-space velocity cannot follow.
 std::vector<std::pair<int, int>> track_in_group(const std::vector<int>& group_keyframes,
                                                 const std::vector<std::vector<int>>& by_keyframe,
                                                 const std::vector<ObjectMeasurement>& measurements,
-                                                const mot::TrackerOptions& options);
+                                                const mot::TrackerOptions& options,
+                                                const KeyframeViews* views = nullptr);
 
 // Runs the whole association over the measurements of all keyframes, grouped as `groups` (keyframe
 // indices; ignored in hdp-only mode, where every keyframe with measurements is its own group).
 AssociationResult associate_objects(const std::vector<ObjectMeasurement>& measurements,
-                                    const std::vector<std::vector<int>>& groups, const SemanticOptions& options);
+                                    const std::vector<std::vector<int>>& groups, const SemanticOptions& options,
+                                    const KeyframeViews* views = nullptr);
 
 }  // namespace wardmap::semantics

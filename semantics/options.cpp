@@ -85,6 +85,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(m, "semantics.measurement", "min_depth", o.measurement.min_depth, file);
   read_option(m, "semantics.measurement", "max_depth", o.measurement.max_depth, file);
   read_option(g, "semantics.groups", "split_distance", o.groups.split_distance, file);
+  read_option(g, "semantics.groups", "camera_motion", o.groups.camera_motion, file);
   read_option(m, "semantics.measurement", "depth_band", o.measurement.depth_band, file);
   read_option(m, "semantics.measurement", "min_points", o.measurement.min_points, file);
   read_option(m, "semantics.measurement", "complete_depth_with_class_size", o.measurement.complete_depth_with_class_size, file);

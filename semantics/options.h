@@ -58,6 +58,9 @@ struct GroupOptions {
   // A track whose measurements jump by more than this (m) from the track's position so far is
   // split: image-space MOT can swap identical neighbours, their 3-D positions cannot.
   double split_distance = 0.5;
+  // MOT predicts a track's box in the next keyframe from the keyframe poses (the camera's motion)
+  // instead of the Kalman filter's image velocity alone (see track_in_group).
+  bool camera_motion = true;
 };
 
 // GMM prior + likelihood of the HDP association (Assoc. Eq. 2-3, III-A.2).

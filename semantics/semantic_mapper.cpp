@@ -65,7 +65,9 @@ AssociationResult SemanticMapper::build_map() {
   grouper.flush();
   groups_.clear();
   for (int n = 0; n < grouper.num_groups(); ++n) groups_.push_back(grouper.group(n));
-  AssociationResult r = associate_objects(measurements_, groups_, options_);
+  KeyframeViews views{camera_, {}};
+  for (const auto& k : keyframes_) views.T_wc.push_back(k.T_wc);
+  AssociationResult r = associate_objects(measurements_, groups_, options_, &views);
   times_.mot = r.mot_seconds;
   times_.hdp = r.hdp_seconds;
   times_.pose_selection = r.pose_selection_seconds;

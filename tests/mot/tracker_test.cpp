@@ -154,6 +154,38 @@ TEST(Tracker, KeyframeSizedJumpsStayInsideTheDefaultGate) {
   EXPECT_EQ(tracker.tracks().size(), 1u);
 }
 
+TEST(Tracker, CameraMotionPredictionKeepsIdsOfIdenticalNeighboursInAQuickPan) {
+  // Three identical boxes 40 px apart, still for two updates, then the camera pans: every box moves
+  // left by 40, then 100 px. The Kalman filter (no image velocity yet) predicts the old places,
+  // where the right-hand neighbours now are; the caller's prediction knows the shift.
+  const Eigen::VectorXf e = Eigen::VectorXf::Unit(16, 0);
+  const std::vector<double> shift = {0, 0, -40, -140};
+  auto frame = [&](size_t f) {
+    std::vector<std::pair<int, Detection>> dets;
+    for (int i = 0; i < 3; ++i) dets.push_back({i, make_detection(300 + 40 * i + shift[f], 200, 36, 80, 0, e, i)});
+    return dets;
+  };
+  auto run_with = [&](bool compensate) {
+    Tracker tracker;
+    ClearMotAccumulator acc;
+    for (size_t f = 0; f < shift.size(); ++f) {
+      const double dx = f == 0 ? 0.0 : shift[f] - shift[f - 1];
+      const Tracker::BoxPredictor predict = [&](const Track& t) -> std::optional<Eigen::Vector4d> {
+        return t.box() + Eigen::Vector4d(dx, 0, dx, 0);
+      };
+      std::vector<Detection> dets;
+      for (const auto& gd : frame(f)) dets.push_back(gd.second);
+      const std::vector<int> ids = compensate ? tracker.update(dets, 1.0, predict) : tracker.update(dets);
+      FrameCorrespondences fc;
+      for (size_t i = 0; i < ids.size(); ++i) fc.matches.emplace_back(static_cast<int>(i), ids[i]);
+      acc.add_frame(fc);
+    }
+    return acc.result();
+  };
+  EXPECT_GT(run_with(false).id_switches, 0);  // the scene is one that image-space motion gets wrong
+  EXPECT_EQ(run_with(true).id_switches, 0);
+}
+
 TEST(Tracker, LostTrackIsRecoveredByAppearance) {
   std::mt19937 rng(9);
   const Eigen::VectorXf e = random_unit(rng, 64);
