@@ -115,7 +115,9 @@ double run_slam_job(const SlamJob& job) {
   json report = {{"sequence", job.sequence.string()}, {"mode", mode}, {"settings", settings_file.string()},
                  {"frames", reader->size()}, {"frames_in_final_map", traj.size()}, {"submaps", front.submaps().size()},
                  {"tracking_ms", {{"median", 1e3 * percentile(seconds, 0.5)}, {"p95", 1e3 * percentile(seconds, 0.95)},
-                                  {"max", 1e3 * percentile(seconds, 1.0)}}}};
+                                  {"max", 1e3 * percentile(seconds, 1.0)}}},
+                 // keyframes the threaded mapper registered without fusion, BA and culling (it was behind)
+                 {"mapper_deferred_keyframes", front.mapper_stats().deferred}};
   double rate = -1;
   std::string md = "# wardmap run (SLAM front-process)\n\n- sequence: `" + job.sequence.string() + "`\n- mode: " + mode +
                    "\n- frames: " + std::to_string(reader->size()) + ", in the final map: " + std::to_string(traj.size()) +
@@ -124,6 +126,8 @@ double run_slam_job(const SlamJob& job) {
   std::snprintf(buf, sizeof buf, "- tracking time per frame: median %.1f ms, p95 %.1f ms\n", 1e3 * percentile(seconds, 0.5),
                 1e3 * percentile(seconds, 0.95));
   md += buf;
+  md += "- keyframes mapped without fusion, BA and culling (threaded mapper behind): " +
+        std::to_string(front.mapper_stats().deferred) + "\n";
   if (info.has_ground_truth && traj.size() >= 3) {
     const auto& gt = reader->ground_truth();
     const auto pairs = slam::eval::associate(gt, traj, {});
