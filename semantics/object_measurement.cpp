@@ -109,13 +109,14 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   const MeasurementOptions& o = options.measurement;
   if (depth.empty() || depth.type() != CV_32F) return std::nullopt;
   const double w = box(2) - box(0), h = box(3) - box(1);
-  if (w < 4 || h < 4) return std::nullopt;
+  // A sliver of a box (a door far down a corridor, seen edge-on) holds too few columns to place it.
+  if (w < o.min_box_side || h < o.min_box_side) return std::nullopt;
   const auto class_size = options.class_sizes.find(label);
   const bool sized = class_size != options.class_sizes.end();
   // Cut off by the image border: the visible part's centre is not the object's. A cut at the top or
-  // the bottom can be completed from the class's height (the opposite end is real; cameras are
-  // upright). A cut at the left or right cannot: whether the object's front or its side is seen is
-  // unknown, and so is the width to complete (measured: 0.4-0.8 m errors in the synthetic scenes).
+  // the bottom is completed from the class's height (the opposite end is real; cameras are upright).
+  // A cut at the left or right is completed along the seen face to the class's horizontal size that
+  // holds what is seen, when only one does (which face is seen is a guess: Eq. 4-6 outvotes a wrong one).
   const double m = o.border_margin;
   BorderCut cut;
   cut.left = box(0) <= m, cut.top = box(1) <= m;
@@ -124,8 +125,11 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   const std::vector<OccluderMask> masks = occluder_masks(occluders, o.occluder_inflate);
   if (sized && o.occluded_bottom_share <= 1 && bottom_occluded(depth, cam, T_wc, box, masks, o.occluded_bottom_share))
     cut.bottom = true;
-  if (cut.left || cut.right || ((cut.top || cut.bottom) && (!sized || !o.complete_depth_with_class_size)) ||
-      (cut.top && cut.bottom))
+  const bool completes = sized && o.complete_depth_with_class_size;
+  const bool thin = options.thin_classes.count(label) > 0;
+  if (((cut.left || cut.right) && (!completes || !o.complete_side_cuts || thin)) ||
+      (cut.left && cut.right) ||
+      ((cut.top || cut.bottom) && !completes) || (cut.top && cut.bottom))
     return std::nullopt;
   const int x0 = std::max(0, static_cast<int>(std::floor(box(0) + o.box_shrink * w)));
   const int x1 = std::min(depth.cols - 1, static_cast<int>(std::ceil(box(2) - o.box_shrink * w)));
@@ -133,7 +137,12 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   const int y1 = std::min(depth.rows - 1, static_cast<int>(std::ceil(box(3) - o.box_shrink * h)));
   const double area = static_cast<double>(x1 - x0 + 1) * (y1 - y0 + 1);
   const int stride = std::max(1, static_cast<int>(std::sqrt(area / o.target_samples)));
-  std::vector<std::pair<double, Eigen::Vector3d>> samples;  // (depth, world point)
+  struct Sample {
+    double z;           // depth
+    Eigen::Vector3d p;  // world point
+    int x;              // image column
+  };
+  std::vector<Sample> samples;
   for (int y = y0; y <= y1; y += stride) {
     const float* row = depth.ptr<float>(y);
     for (int x = x0; x <= x1; x += stride) {
@@ -141,22 +150,35 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
       if (!(z >= o.min_depth && z <= o.max_depth)) continue;
       const Eigen::Vector3d p = T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z);
       if (hidden_by(masks, x, y, p)) continue;
-      samples.emplace_back(z, p);
+      samples.push_back({z, p, x});
     }
   }
   if (static_cast<int>(samples.size()) < o.min_points) return std::nullopt;
   // The object is the depth window, as deep as the object, that holds the most points: it owns the
   // box (what lies behind it is wall or floor, what lies in front a partial occluder).
-  std::sort(samples.begin(), samples.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::sort(samples.begin(), samples.end(), [](const Sample& a, const Sample& b) { return a.z < b.z; });
   double band = o.depth_band;
   if (sized) band = std::max(0.1, std::max(class_size->second[0], class_size->second[1]));
   // Thin objects (a pole) own few of their box's pixels: take the nearest window with enough of them.
-  const bool thin = options.thin_classes.count(label) > 0;
   const size_t need = std::max<size_t>(o.min_points, static_cast<size_t>((thin ? o.thin_support : o.cluster_support) *
                                                                           samples.size()));
+  // A side cut keeps the box's uncut end: the window must hold the depth of the columns there (an
+  // oblique door's nearest part would otherwise win, and its real end be lost).
+  const bool side = cut.left || cut.right;
+  const int edge_width = std::max(stride, static_cast<int>(0.15 * (x1 - x0)));
+  const auto at_uncut_edge = [&](const Sample& p) { return cut.left ? p.x >= x1 - edge_width : p.x <= x0 + edge_width; };
+  double edge_depth = -1;
+  if (side && !thin) {
+    std::vector<double> zs;
+    for (const Sample& p : samples)
+      if (at_uncut_edge(p)) zs.push_back(p.z);
+    if (zs.empty()) return std::nullopt;
+    edge_depth = percentile(zs, 0.5);
+  }
   size_t begin = 0, end = 0;
   for (size_t i = 0, j = 0; i < samples.size(); ++i) {
-    while (j < samples.size() && samples[j].first <= samples[i].first + band) ++j;
+    while (j < samples.size() && samples[j].z <= samples[i].z + band) ++j;
+    if (edge_depth >= 0 && !(samples[i].z <= edge_depth && edge_depth <= samples[i].z + band)) continue;
     if (j - i > end - begin) begin = i, end = j;
     if (thin && j - i >= need) break;
   }
@@ -164,7 +186,7 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   if (begin >= end) return std::nullopt;
   std::vector<Eigen::Vector3d> world;
   world.reserve(end - begin);
-  for (size_t i = begin; i < end; ++i) world.push_back(samples[i].second);
+  for (size_t i = begin; i < end; ++i) world.push_back(samples[i].p);
 
   // Principal horizontal axis.
   const Eigen::Vector3d z = up.normalized();
@@ -200,7 +222,7 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
     // A thin class's lower part (legs, wheels, a base of spokes) gives few points and its top (a
     // backrest, a hook) few more: the 5-95 % extent falls short of both ends. Its uncut box rows are
     // its ends, at the depth of its points.
-    const double d = samples[(begin + end) / 2].first, u = 0.5 * (box(0) + box(2));
+    const double d = samples[(begin + end) / 2].z, u = 0.5 * (box(0) + box(2));
     const auto row_height = [&](double v) { return (T_wc * (cam.unproject(Eigen::Vector2d(u, v)) * d)).dot(z); };
     if (!cut.top) hi(2) = row_height(box(1));
     if (!cut.bottom) lo(2) = row_height(box(3));
@@ -217,19 +239,67 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
     else
       lo(2) -= trim * (hi(2) - lo(2)), hi(2) = lo(2) + full;
   }
+  // A side cut (not of a thin class: its nearest points show no face): completed along the seen
+  // face, towards the cut border.
+  int cut_axis = -1;
+  double cut_other = 0;  // the class's horizontal size the other axis then gets
+  if (cut.left || cut.right) {
+    const slam::SE3 T_cw = T_wc.inverse();
+    const Eigen::Vector3d pc = T_cw * (R * (0.5 * (lo + hi)));
+    if (pc.z() <= 1e-6) return std::nullopt;
+    // The hidden part continues the seen face: along the major axis (R.col(0)), on the side where
+    // the image moves towards the cut border. du: image columns per metre along that axis.
+    const int a = 0;
+    const Eigen::Vector3d d = T_cw.rotation() * R.col(a);
+    const double du = cam.fx * (d.x() * pc.z() - pc.x() * d.z()) / (pc.z() * pc.z());
+    if (std::abs(du) < o.side_cut_min_slope) return std::nullopt;  // the face runs along the ray
+    const double sign = (du < 0) == cut.left ? 1.0 : -1.0;  // + : the cut lies towards +R.col(a)
+    // The uncut end: where the ray through the box's uncut edge meets the face (the vertical plane
+    // along R.col(a) through the window's points in the edge columns).
+    Eigen::Vector3d edge = Eigen::Vector3d::Zero();
+    int n = 0;
+    for (size_t i = begin; i < end; ++i)
+      if (at_uncut_edge(samples[i])) edge += samples[i].p, ++n;
+    if (n == 0) return std::nullopt;
+    edge /= n;
+    const Eigen::Vector3d normal = R.col(1 - a);
+    const Eigen::Vector2d edge_pixel(cut.left ? box(2) : box(0), cam.project(T_cw * edge).y());
+    const Eigen::Vector3d ray = T_wc.rotation() * cam.unproject(edge_pixel);
+    const double facing = ray.dot(normal);
+    if (std::abs(facing) < 1e-6) return std::nullopt;
+    const double t = (edge - T_wc.translation()).dot(normal) / facing;
+    if (t <= 0) return std::nullopt;
+    const double end_a = (T_wc.translation() + t * ray).dot(R.col(a));
+    const double seen = sign > 0 ? hi(a) - end_a : end_a - lo(a);
+    // The class's horizontal sizes the seen part can be a piece of (10 % tolerance); two unlike ones
+    // (a bed's width or length) leave the completion unknown: no pose.
+    const double small = std::min(cs[0], cs[1]), large = std::max(cs[0], cs[1]);
+    const bool small_fits = small >= 0.9 * seen;
+    if (small_fits && large > 1.25 * small) return std::nullopt;
+    const double full = small_fits ? std::max(seen, small) : std::max(seen, large);
+    if (sign > 0)
+      lo(a) = end_a, hi(a) = end_a + full;
+    else
+      hi(a) = end_a, lo(a) = end_a - full;
+    cut_axis = a;
+    cut_other = full <= small ? large : small;
+  }
   size = (hi - lo).cwiseMax(0.02);
   Eigen::Vector3d centre = R * (0.5 * (lo + hi));
 
-  // Only the camera-facing surface is seen: the depth comes from the class's typical size.
+  // Only the camera-facing surface is seen: the depth comes from the class's typical size (after a
+  // side cut, along the other axis).
   Eigen::Vector3d view = centre - T_wc.translation();
   view -= view.dot(z) * z;
   if (view.norm() > 1e-6) {
     view.normalize();
     // The horizontal object axis closer to the viewing direction is the hidden depth.
-    const int k = std::abs(view.dot(R.col(0))) > std::abs(view.dot(R.col(1))) ? 0 : 1;
+    int k = std::abs(view.dot(R.col(0))) > std::abs(view.dot(R.col(1))) ? 0 : 1;
+    if (cut_axis >= 0) k = 1 - cut_axis;
     // The class's horizontal size that is not the seen width is the hidden depth.
     const double other_seen = size(1 - k);
-    const double expected = std::abs(other_seen - cs[0]) < std::abs(other_seen - cs[1]) ? cs[1] : cs[0];
+    const double expected = cut_axis >= 0 ? cut_other
+                            : std::abs(other_seen - cs[0]) < std::abs(other_seen - cs[1]) ? cs[1] : cs[0];
     // Anchor on the front surface (the extent end facing the camera): what lies behind it in the
     // box may be the object's back or the wall it stands against.
     const double sign = view.dot(R.col(k)) >= 0 ? 1.0 : -1.0;

@@ -32,7 +32,8 @@ struct MeasurementOptions {
   double depth_band = 0.6;        // surface depth window (m) for classes without a typical size
   double cluster_support = 0.25;  // the fullest depth window must hold this share of the points
   int min_points = 20;            // fewer valid points: no pose
-  int border_margin = 2;          // a box this close to the image border is cut off: no pose
+  double min_box_side = 10;       // px: a narrower or lower box gets no pose
+  int border_margin = 2;          // a box this close to the image border is cut off (completed, or no pose)
   double occluder_margin = 0.15;  // a detection this much nearer (m) than another hides its pixels,
   double occluder_footprint_px = 8;  // or one whose box reaches this much lower in the image
   double occluder_inflate = 0.1;     // margin (m) of a measured occluder's 3-D box when masking its pixels
@@ -46,6 +47,10 @@ struct MeasurementOptions {
   double max_size_ratio = 1.6;    // extents beyond this times the class's largest size: wall or floor, no pose
   double min_depth = 0.2, max_depth = 10.0;
   bool complete_depth_with_class_size = true;  // push the centre back when only a front face is seen
+  // A box cut off at the left or right image border gets a pose completed to the class's size on
+  // the cut side (false: no pose). Objects at the edge of a turn are seen no other way.
+  bool complete_side_cuts = true;
+  double side_cut_min_slope = 20;  // px per metre along the seen face: below, the face runs along the ray
 };
 
 // Keyframe groups (Assoc. III-A.1): M adjacent keyframes, j shared with the next group. The paper

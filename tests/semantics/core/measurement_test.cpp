@@ -41,8 +41,16 @@ TEST(Measurement, NoPoseForDegenerateInput) {
   EXPECT_FALSE(measure_pose_from_depth(empty, camera(), slam::SE3(), Eigen::Vector4d(200, 100, 400, 300), up, "door", o));
   EXPECT_FALSE(measure_pose_from_depth(cv::Mat(), camera(), slam::SE3(), Eigen::Vector4d(200, 100, 400, 300), up, "door", o));
   const cv::Mat d = scene(5, 2, 0, 100, 100, 300);
-  // Cut off by the left border.
-  EXPECT_FALSE(measure_pose_from_depth(d, camera(), slam::SE3(), Eigen::Vector4d(0, 100, 100, 300), up, "door", o));
+  // Cut off by the left border, with side cuts not completed.
+  SemanticOptions no_side = o;
+  no_side.measurement.complete_side_cuts = false;
+  EXPECT_FALSE(measure_pose_from_depth(d, camera(), slam::SE3(), Eigen::Vector4d(0, 100, 100, 300), up, "door", no_side));
+  // Cut off by both side borders.
+  const cv::Mat wide = scene(5, 2, 0, 640, 100, 300);
+  EXPECT_FALSE(measure_pose_from_depth(wide, camera(), slam::SE3(), Eigen::Vector4d(0, 100, 639, 300), up, "door", o));
+  // A sliver of a box (a door seen edge-on far away).
+  const cv::Mat sliver = scene(5, 2, 300, 306, 100, 300);
+  EXPECT_FALSE(measure_pose_from_depth(sliver, camera(), slam::SE3(), Eigen::Vector4d(300, 100, 306, 300), up, "door", o));
   // Cut off at the bottom, but with no class height to complete it from.
   const cv::Mat low = scene(5, 2, 200, 300, 300, 480);
   EXPECT_FALSE(measure_pose_from_depth(low, camera(), slam::SE3(), Eigen::Vector4d(200, 300, 300, 479), up, "bin", o));
@@ -51,6 +59,37 @@ TEST(Measurement, NoPoseForDegenerateInput) {
   EXPECT_FALSE(measure_pose_from_depth(tall, camera(), slam::SE3(), Eigen::Vector4d(200, 0, 300, 479), up, "door", o));
   // A 3x3 pixel box.
   EXPECT_FALSE(measure_pose_from_depth(d, camera(), slam::SE3(), Eigen::Vector4d(300, 200, 303, 203), up, "door", o));
+}
+
+// A door on the left wall (x = -1 m) of a corridor seen along it, spanning z in [1.5, 2.4] and
+// y in [-0.5, 0.5]: its near part lies beyond the image's left border.
+TEST(Measurement, SideCutBoxIsCompletedAlongItsFace) {
+  SemanticOptions o;
+  const Eigen::Vector3d up(0, -1, 0);
+  const slam::PinholeCamera c = camera();
+  cv::Mat d(480, 640, CV_32F, cv::Scalar(6.0));
+  for (int v = 0; v < d.rows; ++v)
+    for (int u = 0; u < d.cols; ++u) {
+      const double rx = (u - c.cx) / c.fx;
+      if (rx < -1.0 / 6.0) d.at<float>(v, u) = static_cast<float>(-1.0 / rx);  // the wall x = -1
+    }
+  // The door's box: from the border to its far end (z = 2.4), rows of its near end at the border.
+  const double u_far = c.cx - c.fx / 2.4, z_border = 1.0 / (c.cx / c.fx);
+  const Eigen::Vector4d box(0, c.cy - c.fy * 0.5 / z_border, u_far, c.cy + c.fy * 0.5 / z_border);
+  const auto p = measure_pose_from_depth(d, c, slam::SE3(), box, up, "door", o);
+  ASSERT_TRUE(p);
+  // Completed to the door's 0.9 m width from its seen far end: centre z = 1.95, on the wall.
+  EXPECT_NEAR(p->pose.translation().z(), 1.95, 0.03) << p->pose.translation().transpose();
+  EXPECT_NEAR(p->pose.translation().x(), -1.0, 0.06);
+  EXPECT_NEAR(p->size.x(), 0.9, 1e-9);  // the door's width
+  EXPECT_NEAR(std::abs(p->pose.rotation_matrix().col(0).z()), 1.0, 0.02);  // the face runs along z
+  // Without the completion its centre would be the seen part's (z about 2.0 - 2.1 here) and no
+  // side cut would be placed at all.
+  SemanticOptions no_side = o;
+  no_side.measurement.complete_side_cuts = false;
+  EXPECT_FALSE(measure_pose_from_depth(d, c, slam::SE3(), box, up, "door", no_side));
+  // A thin class shows no face to follow: no pose.
+  EXPECT_FALSE(measure_pose_from_depth(d, c, slam::SE3(), box, up, "chair", o));
 }
 
 TEST(Measurement, NearerOverlappingDetectionIsLeftOut) {
