@@ -14,7 +14,8 @@ Eigen::Vector3d unproject_keypoint(const FrameFeatures& f, size_t i, const SE3& 
 
 std::vector<std::pair<int, std::shared_ptr<MapPoint>>> create_depth_points(const std::shared_ptr<KeyFrame>& kf,
                                                                            Submap& submap, const PinholeCamera& camera,
-                                                                           const TrackingOptions& options) {
+                                                                           const TrackingOptions& options,
+                                                                           bool every_depth) {
   const FrameFeatures& f = kf->features();
   std::vector<std::pair<float, int>> by_depth;
   for (size_t i = 0; i < f.size(); ++i)
@@ -23,7 +24,7 @@ std::vector<std::pair<int, std::shared_ptr<MapPoint>>> create_depth_points(const
   std::vector<std::pair<int, std::shared_ptr<MapPoint>>> created;
   int considered = 0;
   for (const auto& [d, i] : by_depth) {
-    if (d > options.close_depth && considered > options.min_depth_points) break;
+    if (!every_depth && d > options.close_depth && considered > options.min_depth_points) break;
     ++considered;
     const size_t s = static_cast<size_t>(i);
     const auto& existing = kf->map_point(s);

@@ -258,7 +258,7 @@ bool Tracker::initialise_rgbd(Frame& frame) {
   if (with_depth < options_.tracking.min_init_points) return false;
   frame.set_pose_cw(initial_pose_cw_);
   auto kf = submap_->create_keyframe(frame);
-  auto created = create_depth_points(kf, *submap_, camera_, options_.tracking);
+  auto created = create_depth_points(kf, *submap_, camera_, options_.tracking, /*every_depth=*/true);
   for (const auto& [i, mp] : created) frame.map_points[static_cast<size_t>(i)] = mp;
   add_to_place_database(kf);
   reference_ = last_keyframe_ = kf;

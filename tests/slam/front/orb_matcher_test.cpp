@@ -83,6 +83,26 @@ TEST(OrbMatcher, ProjectionSearchFindsTheTrueCorrespondences) {
   EXPECT_GT(correct, 0.85 * total);
 }
 
+// A new keyframe makes points of its close keypoints and of at least min_depth_points more (ORB-SLAM's
+// CreateNewKeyFrame); the first keyframe of a submap makes one of every keypoint with a depth (its
+// StereoInitialization): on a plane beyond the close depth, 101 against all of them.
+TEST(RgbdPoints, FirstKeyframeMakesAPointOfEveryKeypointWithDepth) {
+  PlaneScene s;
+  OrbExtractor ex(OrbOptions{});
+  FrontOptions o;
+  o.tracking.close_depth = 0.1;
+  auto f = make_frame_features(s.image1, s.depth_map(), ex, s.camera, 0.08, 10.0, 0.05);
+  int with_depth = 0;
+  for (size_t i = 0; i < f->size(); ++i) with_depth += f->has_depth(i) ? 1 : 0;
+  ASSERT_GT(with_depth, 500);
+  Frame a(0, 0.0, f), b(1, 0.0, f);
+  Submap submap(0);
+  EXPECT_EQ(create_depth_points(submap.create_keyframe(a), submap, s.camera, o.tracking).size(),
+            static_cast<size_t>(o.tracking.min_depth_points + 1));
+  EXPECT_EQ(create_depth_points(submap.create_keyframe(b), submap, s.camera, o.tracking, /*every_depth=*/true).size(),
+            static_cast<size_t>(with_depth));
+}
+
 TEST(OrbMatcher, KnnBootstrapMatchesAWarpedImage) {
   PlaneScene s;
   s.tx = 0.08;  // 20 px
