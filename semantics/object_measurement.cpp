@@ -272,8 +272,10 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
     const double end_a = (T_wc.translation() + t * ray).dot(R.col(a));
     const double seen = sign > 0 ? hi(a) - end_a : end_a - lo(a);
     // The class's horizontal sizes the seen part can be a piece of (10 % tolerance); two unlike ones
-    // (a bed's width or length) leave the completion unknown: no pose.
+    // (a bed's width or length) leave the completion unknown: no pose. So does an end far from the
+    // edge points (a ray grazing a face that is not one: a bed's top and side).
     const double small = std::min(cs[0], cs[1]), large = std::max(cs[0], cs[1]);
+    if (seen > 1.1 * large || std::abs(end_a - edge.dot(R.col(a))) > 0.5 * large) return std::nullopt;
     const bool small_fits = small >= 0.9 * seen;
     if (small_fits && large > 1.25 * small) return std::nullopt;
     const double full = small_fits ? std::max(seen, small) : std::max(seen, large);
