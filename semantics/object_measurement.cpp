@@ -127,7 +127,8 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
     cut.bottom = true;
   const bool completes = sized && o.complete_depth_with_class_size;
   const bool thin = options.thin_classes.count(label) > 0;
-  if (((cut.left || cut.right) && (!completes || !o.complete_side_cuts || thin)) ||
+  const bool side = cut.left || cut.right;
+  if ((side && (!completes || !o.complete_side_cuts || thin)) ||
       (cut.left && cut.right) ||
       ((cut.top || cut.bottom) && !completes) || (cut.top && cut.bottom))
     return std::nullopt;
@@ -164,7 +165,6 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
                                                                           samples.size()));
   // A side cut keeps the box's uncut end: the window must hold the depth of the columns there (an
   // oblique door's nearest part would otherwise win, and its real end be lost).
-  const bool side = cut.left || cut.right;
   const int edge_width = std::max(stride, static_cast<int>(0.15 * (x1 - x0)));
   const auto at_uncut_edge = [&](const Sample& p) { return cut.left ? p.x >= x1 - edge_width : p.x <= x0 + edge_width; };
   double edge_depth = -1;
@@ -243,7 +243,7 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   // face, towards the cut border.
   int cut_axis = -1;
   double cut_other = 0;  // the class's horizontal size the other axis then gets
-  if (cut.left || cut.right) {
+  if (side) {
     const slam::SE3 T_cw = T_wc.inverse();
     const Eigen::Vector3d pc = T_cw * (R * (0.5 * (lo + hi)));
     if (pc.z() <= 1e-6) return std::nullopt;
