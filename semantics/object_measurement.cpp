@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "semantics/object_metrics.h"
+
 namespace wardmap::semantics {
 
 namespace {
@@ -406,7 +408,37 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
     poses[next] = measure_pose_from_depth(depth, camera, T_wc, boxes[next], up, labels[next], options, occluders);
     done[next] = true;
   }
+  drop_coincident_poses(poses, boxes, labels, up, options);
   return poses;
+}
+
+void drop_coincident_poses(std::vector<std::optional<ObjectPose>>& poses, const std::vector<Eigen::Vector4d>& boxes,
+                           const std::vector<std::string>& labels, const Eigen::Vector3d& up,
+                           const SemanticOptions& options) {
+  const MeasurementOptions& o = options.measurement;
+  if (o.coincident_ratio <= 0) return;
+  const Eigen::Vector3d z = up.normalized();
+  const auto footprint = [&](size_t i) {
+    const auto cs = options.class_sizes.find(labels[i]);
+    if (cs != options.class_sizes.end()) return std::min(cs->second[0], cs->second[1]);
+    return std::min(poses[i]->size(0), poses[i]->size(1));
+  };
+  std::vector<bool> drop(poses.size(), false);
+  for (size_t i = 0; i < poses.size(); ++i)
+    for (size_t j = i + 1; j < poses.size(); ++j) {
+      if (!poses[i] || !poses[j] || options.support_classes.count(labels[i]) || options.support_classes.count(labels[j]))
+        continue;
+      Eigen::Vector3d d = poses[i]->pose.translation() - poses[j]->pose.translation();
+      d -= d.dot(z) * z;
+      const bool coincident = d.norm() < o.coincident_ratio * std::min(footprint(i), footprint(j));
+      const bool ambiguous = labels[i] == labels[j] && box_iou(boxes[i], boxes[j]) >= o.ambiguous_pair_iou;
+      if (!coincident && !ambiguous) continue;
+      const double lower = boxes[i](3) - boxes[j](3);  // > 0: i reaches lower, so it is nearer
+      if (lower <= o.occluder_footprint_px) drop[i] = true;
+      if (lower >= -o.occluder_footprint_px) drop[j] = true;
+    }
+  for (size_t i = 0; i < poses.size(); ++i)
+    if (drop[i]) poses[i].reset();
 }
 
 }  // namespace wardmap::semantics

@@ -68,6 +68,15 @@ std::vector<std::vector<int>> nearer_overlapping_detections(const cv::Mat& depth
                                                             const MeasurementOptions& options,
                                                             const std::vector<bool>& supports = {});
 
+// Two detections of one keyframe whose poses stand at one place (horizontal centres closer than
+// measurement.coincident_ratio times the smaller class's smaller horizontal size; support classes
+// excepted) cannot both be right: the occluded one was measured on its occluder (chairs in a row
+// seen from behind). The farther one, whose box ends occluder_footprint_px higher, loses its pose;
+// when neither is clearly farther, both do.
+void drop_coincident_poses(std::vector<std::optional<ObjectPose>>& poses, const std::vector<Eigen::Vector4d>& boxes,
+                           const std::vector<std::string>& labels, const Eigen::Vector3d& up,
+                           const SemanticOptions& options);
+
 // Assoc. Eq. 1 "Pose" for all detections of one keyframe: front to back, so that each is measured
 // without the pixels of the nearer ones, masked by their measured 3-D boxes when they have one.
 std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& depth, const slam::PinholeCamera& camera,

@@ -52,6 +52,8 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(measurement.max_size_ratio, 1, 100, "measurement.max_size_ratio");
   c(measurement.side_cut_min_slope, 0, 1e6, "measurement.side_cut_min_slope");
   c(measurement.min_box_side, 1, 1e4, "measurement.min_box_side");
+  c(measurement.coincident_ratio, 0, 2, "measurement.coincident_ratio");
+  c(measurement.ambiguous_pair_iou, 0, 2, "measurement.ambiguous_pair_iou");
   c(pose_selection.max_angle_deg, 1e-3, 180, "pose_selection.max_angle_deg");
   c(pose_selection.max_distance, 1e-3, 100, "pose_selection.max_distance");
   c(pose_selection.alpha, 0, 1, "pose_selection.alpha");
@@ -94,6 +96,8 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(m, "semantics.measurement", "complete_side_cuts", o.measurement.complete_side_cuts, file);
   read_option(m, "semantics.measurement", "side_cut_min_slope", o.measurement.side_cut_min_slope, file);
   read_option(m, "semantics.measurement", "min_box_side", o.measurement.min_box_side, file);
+  read_option(m, "semantics.measurement", "coincident_ratio", o.measurement.coincident_ratio, file);
+  read_option(m, "semantics.measurement", "ambiguous_pair_iou", o.measurement.ambiguous_pair_iou, file);
   read_option(g, "semantics.groups", "size", o.groups.size, file);
   read_option(g, "semantics.groups", "overlap", o.groups.overlap, file);
   read_option(a, "semantics.association", "mode", o.association.mode, file);

@@ -51,6 +51,15 @@ struct MeasurementOptions {
   // the cut side (false: no pose). Objects at the edge of a turn are seen no other way.
   bool complete_side_cuts = true;
   double side_cut_min_slope = 20;  // px per metre along the seen face: below, the face runs along the ray
+  // Two detections of one keyframe measured at one place (horizontal centres closer than this times
+  // the smaller class's smaller horizontal size): an occluded object measured on its occluder. The
+  // farther one (its box ends higher by occluder_footprint_px) loses its pose; when neither is
+  // clearly farther, both do. 0: off.
+  double coincident_ratio = 0.5;
+  // Two detections of one class in one keyframe whose boxes overlap this much (IoU), neither
+  // clearly nearer by its footprint: which one hides the other is unknown, so neither is placed.
+  // Above 1: off.
+  double ambiguous_pair_iou = 2.0;
 };
 
 // Keyframe groups (Assoc. III-A.1): M adjacent keyframes, j shared with the next group. The paper

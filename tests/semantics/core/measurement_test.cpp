@@ -108,6 +108,48 @@ TEST(Measurement, NearerOverlappingDetectionIsLeftOut) {
   EXPECT_NEAR(p->pose.translation().z(), 5.0, 0.05);
 }
 
+// Two cabinets one behind the other, the far one wholly hidden, its detection box the near one's
+// give or take a few pixels: neither box is clearly nearer, so each is measured on the near face.
+// One place cannot hold both objects, and which is which is unknown: neither keeps a pose.
+TEST(Measurement, DetectionsMeasuredAtOnePlaceLoseTheirPoses) {
+  SemanticOptions o;
+  const Eigen::Vector3d up(0, -1, 0);
+  const cv::Mat d = scene(8.0, 3.0, 280, 360, 200, 300);
+  const std::vector<Eigen::Vector4d> boxes = {Eigen::Vector4d(280, 200, 360, 300), Eigen::Vector4d(283, 198, 362, 302)};
+  const std::vector<std::string> labels = {"cabinet", "cabinet"};
+  o.measurement.coincident_ratio = 0;  // off: both are placed on the near face
+  auto poses = measure_keyframe_poses(d, camera(), slam::SE3(), boxes, labels, up, o);
+  ASSERT_TRUE(poses[0] && poses[1]);
+  EXPECT_LT((poses[0]->pose.translation() - poses[1]->pose.translation()).norm(), 0.05);
+  o.measurement.coincident_ratio = 0.5;
+  poses = measure_keyframe_poses(d, camera(), slam::SE3(), boxes, labels, up, o);
+  EXPECT_FALSE(poses[0]);
+  EXPECT_FALSE(poses[1]);
+}
+
+// The footprint decides when it can: the box ending clearly higher is the farther object's.
+TEST(Measurement, CoincidentPosesKeepTheClearlyNearerOne) {
+  SemanticOptions o;
+  const Eigen::Vector3d up(0, -1, 0);
+  const ObjectPose here{slam::SE3(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, 3)), Eigen::Vector3d(0.5, 0.5, 0.9)};
+  ObjectPose near_here = here, apart = here;
+  near_here.pose = slam::SE3(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.15, 0, 3.1));
+  apart.pose = slam::SE3(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.55, 0, 3));
+  const std::vector<std::string> chairs = {"chair", "chair"};
+  const auto run = [&](const ObjectPose& b, double bottom_a, double bottom_b, const std::vector<std::string>& labels) {
+    std::vector<std::optional<ObjectPose>> poses = {here, b};
+    drop_coincident_poses(poses, {Eigen::Vector4d(300, 200, 340, bottom_a), Eigen::Vector4d(302, 200, 342, bottom_b)},
+                          labels, up, o);
+    return std::make_pair(poses[0].has_value(), poses[1].has_value());
+  };
+  EXPECT_EQ(run(near_here, 300, 320, chairs), std::make_pair(false, true));  // the second reaches lower
+  EXPECT_EQ(run(near_here, 320, 300, chairs), std::make_pair(true, false));
+  EXPECT_EQ(run(near_here, 300, 303, chairs), std::make_pair(false, false));  // unknown: neither
+  EXPECT_EQ(run(apart, 300, 303, chairs), std::make_pair(true, true));       // two chairs side by side
+  // A cup on a table stands where the table is.
+  EXPECT_EQ(run(near_here, 300, 303, {"chair", "table"}), std::make_pair(true, true));
+}
+
 // A cabinet behind a bed, seen beside it: the bed's box holds the cabinet's, yet only the bed's own
 // pixels (inside its measured 3-D box) are left out, so the cabinet keeps a pose.
 TEST(Measurement, MeasuredOccluderHidesOnlyItsOwnPixels) {
