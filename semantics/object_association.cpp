@@ -1,8 +1,10 @@
 #include "semantics/object_association.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <map>
+#include <thread>
 
 #include "hdp/crf_sampler.h"
 #include "mot/tracker.h"
@@ -210,8 +212,30 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   // Distinct landmarks are enforced where they are a fact (AssociationModel::cannot_link: two
   // detections in one keyframe), not for every pair in a group: MOT may cut one track in two.
   crf.cannot_link_within_group = false;
-  hdp::CrfSampler sampler(model, sizes, crf);
-  const hdp::CrfResult result = sampler.run();
+  // Independent chains (seeds seed, seed + 1, ...) on up to association.threads threads; the MAP
+  // state of the chain with the highest log p(x, t, k). One chain can stay in a state where two
+  // neighbours swap landmarks over a run of groups: one item at a time cannot undo it, as the
+  // cannot-link keeps the two apart in every group.
+  const int chains = options.association.chains;
+  std::vector<hdp::CrfResult> results(static_cast<size_t>(chains));
+  std::atomic<int> next{0};
+  const auto work = [&]() {
+    for (int c; (c = next++) < chains;) {
+      hdp::CrfOptions co = crf;
+      co.seed = crf.seed + static_cast<std::uint64_t>(c);
+      hdp::CrfSampler sampler(model, sizes, co);
+      results[static_cast<size_t>(c)] = sampler.run();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::min(chains, options.association.threads); ++t) pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
+  size_t best = 0;
+  for (size_t c = 1; c < results.size(); ++c)
+    if (results[c].log_joint > results[best].log_joint) best = c;
+  const hdp::CrfResult result = std::move(results[best]);
+  r.hdp_log_joint = result.log_joint;
   r.hdp_seconds = seconds_since(t0);
   t0 = std::chrono::steady_clock::now();
 

@@ -29,6 +29,7 @@ struct AssociationResult {
   std::vector<int> group_of;              // per measurement id: the (last) keyframe group holding it
   int num_group_objects = 0;
   int num_groups = 0;
+  double hdp_log_joint = 0;  // log p(x, t, k) of the MAP state kept (the best chain's)
   double mot_seconds = 0, hdp_seconds = 0, pose_selection_seconds = 0;  // stage times
 };
 

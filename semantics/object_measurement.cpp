@@ -319,6 +319,12 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
       size(2) = std::max(size(2), cs[2]);
     }
   }
+  // A tall class (a door, a pole) spans its box's rows: its height and the box's height bound its
+  // distance. A pole owns few of its box's pixels, and its depth window can land on the wall behind.
+  if (!cut.top && !cut.bottom && o.tall_depth_ratio > 0 && cs[2] >= o.tall_class_ratio * std::max(cs[0], cs[1])) {
+    const double depth_from_height = cam.fy * cs[2] / h;  // tall_depth_ratio's margin covers the centre's offset
+    if ((T_wc.inverse() * centre).z() > o.tall_depth_ratio * depth_from_height) return std::nullopt;
+  }
   return ObjectPose{slam::SE3(R, centre), size};
 }
 

@@ -49,10 +49,14 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(association.appearance_neutral, -1, 1, "association.appearance_neutral");
   c(association.min_measurements, 1, 10000, "association.min_measurements");
   c(association.min_placed_measurements, 1, 10000, "association.min_placed_measurements");
+  c(association.chains, 1, 64, "association.chains");
+  c(association.threads, 1, 64, "association.threads");
   c(measurement.max_size_ratio, 1, 100, "measurement.max_size_ratio");
   c(measurement.side_cut_min_slope, 0, 1e6, "measurement.side_cut_min_slope");
   c(measurement.min_box_side, 1, 1e4, "measurement.min_box_side");
   c(measurement.coincident_ratio, 0, 2, "measurement.coincident_ratio");
+  c(measurement.tall_class_ratio, 1, 100, "measurement.tall_class_ratio");
+  c(measurement.tall_depth_ratio, 0, 100, "measurement.tall_depth_ratio");
   c(measurement.ambiguous_pair_iou, 0, 2, "measurement.ambiguous_pair_iou");
   c(pose_selection.max_angle_deg, 1e-3, 180, "pose_selection.max_angle_deg");
   c(pose_selection.max_distance, 1e-3, 100, "pose_selection.max_distance");
@@ -97,6 +101,8 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(m, "semantics.measurement", "side_cut_min_slope", o.measurement.side_cut_min_slope, file);
   read_option(m, "semantics.measurement", "min_box_side", o.measurement.min_box_side, file);
   read_option(m, "semantics.measurement", "coincident_ratio", o.measurement.coincident_ratio, file);
+  read_option(m, "semantics.measurement", "tall_class_ratio", o.measurement.tall_class_ratio, file);
+  read_option(m, "semantics.measurement", "tall_depth_ratio", o.measurement.tall_depth_ratio, file);
   read_option(m, "semantics.measurement", "ambiguous_pair_iou", o.measurement.ambiguous_pair_iou, file);
   read_option(g, "semantics.groups", "size", o.groups.size, file);
   read_option(g, "semantics.groups", "overlap", o.groups.overlap, file);
@@ -110,6 +116,8 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(a, "semantics.association", "appearance_neutral", o.association.appearance_neutral, file);
   read_option(a, "semantics.association", "min_measurements", o.association.min_measurements, file);
   read_option(a, "semantics.association", "min_placed_measurements", o.association.min_placed_measurements, file);
+  read_option(a, "semantics.association", "chains", o.association.chains, file);
+  read_option(a, "semantics.association", "threads", o.association.threads, file);
   read_option(m, "semantics.measurement", "max_size_ratio", o.measurement.max_size_ratio, file);
   read_option(a, "semantics.association", "alpha", o.association.crf.alpha, file);
   read_option(a, "semantics.association", "gamma", o.association.crf.gamma, file);

@@ -150,6 +150,24 @@ TEST(Measurement, CoincidentPosesKeepTheClearlyNearerOne) {
   EXPECT_EQ(run(near_here, 300, 303, {"chair", "table"}), std::make_pair(true, true));
 }
 
+// A pole's box holds few of its pixels; when its depth window lands on the wall far behind, the
+// box's height tells: a 1.8 m pole filling 180 rows stands about 5 m away, not 9.
+TEST(Measurement, TallClassFartherThanItsBoxHeightAllowsGetsNoPose) {
+  SemanticOptions o;
+  const Eigen::Vector3d up(0, -1, 0);
+  const Eigen::Vector4d box(300, 150, 340, 330);  // 180 rows: 1.8 m at 5 m with f = 500
+  const cv::Mat wall = scene(9.0, 9.0, 0, 1, 0, 1);
+  EXPECT_FALSE(measure_pose_from_depth(wall, camera(), slam::SE3(), box, up, "iv_pole", o));
+  const cv::Mat pole = scene(9.0, 5.0, 300, 340, 150, 330);
+  const auto p = measure_pose_from_depth(pole, camera(), slam::SE3(), box, up, "iv_pole", o);
+  ASSERT_TRUE(p);
+  EXPECT_NEAR(p->pose.translation().z(), 5.25, 0.1);  // the front face at 5 m, pushed back by half 0.5 m
+  o.measurement.tall_depth_ratio = 0;  // off: the wall is taken for the pole
+  const auto off = measure_pose_from_depth(wall, camera(), slam::SE3(), box, up, "iv_pole", o);
+  ASSERT_TRUE(off);
+  EXPECT_GT(off->pose.translation().z(), 8.9);
+}
+
 // A cabinet behind a bed, seen beside it: the bed's box holds the cabinet's, yet only the bed's own
 // pixels (inside its measured 3-D box) are left out, so the cabinet keeps a pose.
 TEST(Measurement, MeasuredOccluderHidesOnlyItsOwnPixels) {
