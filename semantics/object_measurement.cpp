@@ -422,7 +422,8 @@ void drop_coincident_poses(std::vector<std::optional<ObjectPose>>& poses, const 
                            const std::vector<std::string>& labels, const Eigen::Vector3d& up,
                            const SemanticOptions& options) {
   const MeasurementOptions& o = options.measurement;
-  if (o.coincident_ratio <= 0) return;
+  const bool check_ambiguous = o.ambiguous_pair_iou <= 1;
+  if (o.coincident_ratio <= 0 && !check_ambiguous) return;
   const Eigen::Vector3d z = up.normalized();
   const auto footprint = [&](size_t i) {
     const auto cs = options.class_sizes.find(labels[i]);
@@ -437,7 +438,8 @@ void drop_coincident_poses(std::vector<std::optional<ObjectPose>>& poses, const 
       Eigen::Vector3d d = poses[i]->pose.translation() - poses[j]->pose.translation();
       d -= d.dot(z) * z;
       const bool coincident = d.norm() < o.coincident_ratio * std::min(footprint(i), footprint(j));
-      const bool ambiguous = labels[i] == labels[j] && box_iou(boxes[i], boxes[j]) >= o.ambiguous_pair_iou;
+      const bool ambiguous =
+          check_ambiguous && labels[i] == labels[j] && box_iou(boxes[i], boxes[j]) >= o.ambiguous_pair_iou;
       if (!coincident && !ambiguous) continue;
       const double lower = boxes[i](3) - boxes[j](3);  // > 0: i reaches lower, so it is nearer
       if (lower <= o.occluder_footprint_px) drop[i] = true;

@@ -64,7 +64,8 @@ struct MeasurementOptions {
   double tall_depth_ratio = 1.45;
   // Two detections of one class in one keyframe whose boxes overlap this much (IoU), neither
   // clearly nearer by its footprint: which one hides the other is unknown, so neither is placed.
-  // Above 1: off.
+  // Above 1: off (0.6 was mixed on the six seed-1 aisle_straight runs: quick 88.7-96.3 -> 94.8-99.3 %,
+  // slow 97.7-99.7 -> 93.5-99.4 %).
   double ambiguous_pair_iou = 2.0;
 };
 

@@ -70,8 +70,9 @@ std::string settings_yaml(const Sequence& seq) {
     << "Camera.RGB: 1\n\n"
     // The rendered depth is exact (to the PNG's 1/5000 m): its weight as a virtual disparity,
     // z^2 / (fx b) m per pixel, need not be a Kinect's (b = 0.07-0.08 in ORB-SLAM's files). With
-    // b = 0.2 the threaded synthetic RGB-D ATE fell from 1.10 to 0.76 cm (6 sequences, 2-4 runs)
-    // and from 1.39 to 1.12 cm on 6 others not used to choose it; 0.3 gave 0.87, 0.5 0.84.
+    // b = 0.2 the threaded synthetic RGB-D ATE fell from 1.10 to 0.79 cm (6 sequences, 2 runs at
+    // 0.07, 6 at 0.2) and from 1.39 to 1.12 cm on 6 others not used to choose it; 0.3 gave 0.87,
+    // 0.5 0.84.
     // ThDepth keeps close points under 2.8 m, as before.
     << "Stereo.ThDepth: 14.0\nStereo.b: 0.2\nRGBD.DepthMapFactor: " << num(kDepthFactor) << "\n\n"
     << "ORBextractor.nFeatures: 1000\nORBextractor.scaleFactor: 1.2\nORBextractor.nLevels: 8\n"
