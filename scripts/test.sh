@@ -20,7 +20,7 @@ scripts/setup.sh --deps-only
 JOBS=$(nproc 2>/dev/null || echo 2)
 cmake -S . -B "$BUILD" "${EXTRA[@]}"
 cmake --build "$BUILD" -j"$JOBS"
-export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=0}
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}  # off only for the VTK render tests (tests/semantics/render)
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
 export TSAN_OPTIONS=${TSAN_OPTIONS:-suppressions=$PWD/tests/sanitizers/tsan.supp second_deadlock_stack=1}
 cd "$BUILD"
