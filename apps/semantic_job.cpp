@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "apps/progress.h"
@@ -11,6 +12,7 @@
 #include "semantics/detection/embedder.h"
 #include "semantics/detection/model_search.h"
 #include "semantics/export/gltf_export.h"
+#include "semantics/monocular_scale.h"
 #include "semantics/object_map_io.h"
 #include "slam/core/errors.h"
 #include "slam/eval/trajectory_eval.h"
@@ -25,6 +27,29 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
+
+// Runs a detector once per frame: the monocular path asks for every keyframe's detections twice
+// (for the scale, then for the map), and the annotations back-end's noise must not be drawn twice.
+class OncePerFrameDetector : public semantics::Detector {
+ public:
+  explicit OncePerFrameDetector(semantics::Detector& inner) : inner_(inner) {}
+  std::vector<semantics::Detection> detect(const cv::Mat& image, double timestamp) override {
+    const auto it = cache_.find(timestamp);
+    if (it != cache_.end()) return it->second;
+    const auto t0 = std::chrono::steady_clock::now();
+    auto& d = cache_[timestamp] = inner_.detect(image, timestamp);
+    seconds_.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    return d;
+  }
+  std::string name() const override { return inner_.name(); }
+  // Seconds of each call that ran the detector (not of the answers from the cache).
+  const std::vector<double>& seconds() const { return seconds_; }
+
+ private:
+  semantics::Detector& inner_;
+  std::vector<double> seconds_;
+  std::map<double, std::vector<semantics::Detection>> cache_;
+};
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
@@ -101,7 +126,9 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
     };
   }
 
-  semantics::SemanticMapper mapper(options, *detector, embed, camera);
+  OncePerFrameDetector once(*detector);
+  if (job.keyframe_points) options.measurement = semantics::sparse_measurement_options(options);
+  semantics::SemanticMapper mapper(options, once, embed, camera);
   const slam::Trajectory& gt = reader->ground_truth();
   SemanticRun run;
   run.frames = static_cast<int>(reader->size());
@@ -111,16 +138,55 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
     mapper.set_up(semantics::estimate_up(job.keyframes->poses));
     std::vector<double> times;
     for (size_t i = 0; i < reader->size(); ++i) times.push_back(reader->timestamp(i));
+    const auto frame_of = [&](size_t k) {
+      const auto i = slam::io::nearest_within(times, job.keyframes->timestamps[k], 1e-3);
+      if (!i) throw InputError(job.sequence.string(), "no frame at keyframe time " + std::to_string(job.keyframes->timestamps[k]));
+      return reader->read(*i);
+    };
+    const auto* points = job.keyframe_points;
+    if (points && points->size() != job.keyframes->size())
+      throw std::logic_error("run_semantic_job: keyframe_points must be parallel to keyframes");
+    double scale = 1;
+    if (points) {
+      // Monocular: the scale from the upright detections first (their detections are kept for the map).
+      std::vector<double> estimates;
+      Progress progress("object scale", job.keyframes->size(), job.progress);
+      for (size_t k = 0; k < job.keyframes->size(); ++k) {
+        progress.update(k + 1);
+        const slam::io::Frame f = frame_of(k);
+        std::vector<Eigen::Vector4d> boxes;
+        std::vector<std::string> labels;
+        for (const auto& d : once.detect(f.image, f.timestamp)) boxes.push_back(d.box), labels.push_back(d.label);
+        for (double e : semantics::keyframe_scale_estimates((*points)[k], camera, boxes, labels, options))
+          estimates.push_back(e);
+      }
+      progress.finish();
+      run.scale_estimates = static_cast<int>(estimates.size());
+      run.metric_scale = semantics::metric_scale(estimates, options.monocular);
+      if (run.metric_scale) {
+        scale = *run.metric_scale;
+        spdlog::info("monocular objects: {:.4f} m per map unit (median of {} upright detections)", scale, estimates.size());
+      } else {
+        spdlog::warn("monocular objects: only {} upright detections with map points, {} needed for a metric scale; "
+                     "objects get no pose", estimates.size(), options.monocular.min_scale_estimates);
+      }
+    }
+    const auto to_metric = [scale](slam::SE3 T) {
+      return slam::SE3(T.rotation(), T.translation() * scale);
+    };
     Progress progress("semantics", job.keyframes->size(), job.progress);
     for (size_t k = 0; k < job.keyframes->size(); ++k) {
       progress.update(k + 1);
-      const auto i = slam::io::nearest_within(times, job.keyframes->timestamps[k], 1e-3);
-      if (!i) throw InputError(job.sequence.string(), "no frame at keyframe time " + std::to_string(job.keyframes->timestamps[k]));
-      const slam::io::Frame f = reader->read(*i);
-      mapper.add_keyframe({f.timestamp, f.image, f.depth, job.keyframes->poses[k]});
+      const slam::io::Frame f = frame_of(k);
+      cv::Mat depth = f.depth;
+      if (points)
+        depth = run.metric_scale ? semantics::sparse_depth_image((*points)[k], camera, options.monocular.point_radius, scale)
+                                 : cv::Mat();
+      mapper.add_keyframe({f.timestamp, f.image, depth, to_metric(job.keyframes->poses[k])});
     }
     progress.finish();
-    trajectory = *job.trajectory;
+    for (size_t i = 0; i < job.trajectory->size(); ++i)
+      trajectory.push_back(job.trajectory->timestamps[i], to_metric(job.trajectory->poses[i]));
   } else {
     mapper.set_up(semantics::estimate_up(gt.poses));
     semantics::KeyframeSelector selector(options.keyframes);
@@ -140,6 +206,7 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
   run.measurements = mapper.measurements();
   run.keyframes = mapper.keyframes();
   run.times = mapper.times();
+  if (job.keyframe_points) run.times.detection = once.seconds();  // the mapper's calls hit the cache
 
   // Object figures when the sequence has object ground truth (synthetic sequences).
   const fs::path truth_file = job.sequence / "objects.json", ann_file = job.sequence / "annotations.jsonl";
@@ -157,8 +224,12 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
     // The run's world onto the ground truth's (identity on ground-truth poses; SE(3) for RGB-D SLAM).
     slam::Sim3 align;
     if (job.trajectory && !gt.empty()) {
-      const auto pairs = slam::eval::associate(gt, *job.trajectory, {});
-      if (pairs.size() >= 3) align = slam::eval::compute_ate(gt, *job.trajectory, pairs, slam::eval::Alignment::SE3).transform;
+      const auto pairs = slam::eval::associate(gt, trajectory, {});
+      // Monocular: Sim(3), as for its trajectory (EVALUATION.md); the metric scale's own error is
+      // reported beside it.
+      const auto alignment = job.keyframe_points ? slam::eval::Alignment::Sim3 : slam::eval::Alignment::SE3;
+      if (pairs.size() >= 3) align = slam::eval::compute_ate(gt, trajectory, pairs, alignment).transform;
+      if (pairs.size() >= 3 && job.keyframe_points && run.metric_scale) run.alignment_scale = align.scale();
     }
     run.evaluation = semantics::evaluate_objects(records, estimated, semantics::read_objects_json(truth_file),
                                                  semantics::load_annotations(ann_file), align);
@@ -203,6 +274,17 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
                      job.detector + "\n- association: " + job.association + "\n- keyframes: " +
                      std::to_string(run.keyframes.size()) + ", groups: " + std::to_string(run.result.num_groups) +
                      ", landmarks: " + std::to_string(run.result.landmarks.size()) + "\n";
+    if (job.keyframe_points) {
+      report["monocular_scale"] = {{"metres_per_map_unit", run.metric_scale ? json(*run.metric_scale) : json(nullptr)},
+                                   {"estimates", run.scale_estimates}};
+      md += "- monocular map scale: " +
+            (run.metric_scale ? std::to_string(*run.metric_scale) + " m per map unit" : std::string("none (no poses)")) +
+            " from " + std::to_string(run.scale_estimates) + " upright detections\n";
+      if (run.alignment_scale) {
+        report["monocular_scale"]["ground_truth_over_estimate"] = *run.alignment_scale;
+        md += "- ground-truth scale / estimated scale: " + std::to_string(*run.alignment_scale) + "\n";
+      }
+    }
     if (run.evaluation) {
       report["objects"] = evaluation_json(*run.evaluation);
       md += "\n## Objects\n\n```\n" + format_object_evaluation(*run.evaluation) + "```\n";

@@ -6,6 +6,9 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
+
+#include <Eigen/Core>
 
 #include "semantics/detection/detector_options.h"
 #include "semantics/object_association.h"
@@ -33,6 +36,11 @@ struct SemanticJob {
   // and objects_report.json/md.
   const slam::Trajectory* keyframes = nullptr;
   const slam::Trajectory* trajectory = nullptr;
+  // Monocular SLAM: each keyframe's map points in its camera frame (map units), parallel to
+  // `keyframes`. Set: objects are measured on these points, with the map brought to metres by the
+  // scale the detections give (semantics/monocular_scale.h), never on the sequence's depth images;
+  // the objects, the trajectory in map.glb and the evaluation are in that metric frame.
+  const std::vector<std::vector<Eigen::Vector3d>>* keyframe_points = nullptr;
 };
 
 struct SemanticRun {
@@ -42,6 +50,11 @@ struct SemanticRun {
   semantics::StageTimes times;
   std::optional<semantics::ObjectEvaluation> evaluation;  // when the sequence has object ground truth
   int frames = 0;
+  // Monocular SLAM: metres per map unit, and how many detections gave it (0: none; no poses then).
+  std::optional<double> metric_scale;
+  int scale_estimates = 0;
+  // With ground truth: the Sim(3) alignment's scale, i.e. true metres over estimated ones (1: exact).
+  std::optional<double> alignment_scale;
 };
 
 SemanticRun run_semantic_job(const SemanticJob& job);

@@ -165,6 +165,7 @@ double run_slam_job(const SlamJob& job) {
     for (const auto& s : front.submaps())
       if (!best || front.trajectory(s->id()).size() > best_n) best = s.get(), best_n = front.trajectory(s->id()).size();
     slam::Trajectory kfs;
+    std::vector<std::vector<Eigen::Vector3d>> keyframe_points;
     std::string ply_body;
     size_t points = 0;
     if (best) {
@@ -172,7 +173,15 @@ double run_slam_job(const SlamJob& job) {
       for (const auto& [id, kf] : best->keyframes())
         if (!kf->bad()) list.push_back(kf);
       std::sort(list.begin(), list.end(), [](const auto& a, const auto& b) { return a->timestamp() < b->timestamp(); });
-      for (const auto& kf : list) kfs.push_back(kf->timestamp(), slam::resolved_pose_cw(kf).inverse());
+      for (const auto& kf : list) {
+        const slam::SE3 T_cw = slam::resolved_pose_cw(kf);
+        kfs.push_back(kf->timestamp(), T_cw.inverse());
+        if (!options.monocular || !job.objects) continue;
+        // Monocular objects are measured on each keyframe's map points, in its camera frame.
+        auto& pts = keyframe_points.emplace_back();
+        for (const auto& mp : kf->map_points())
+          if (mp && !mp->bad()) pts.push_back(T_cw * mp->position());
+      }
       for (const auto& [id, p] : best->map_points()) {
         if (p->bad()) continue;
         std::snprintf(line, sizeof line, "%.5f %.5f %.5f\n", p->position().x(), p->position().y(), p->position().z());
@@ -192,6 +201,7 @@ double run_slam_job(const SlamJob& job) {
       sj.out = job.out;
       sj.keyframes = &kfs;
       sj.trajectory = &traj;
+      if (options.monocular) sj.keyframe_points = &keyframe_points;
       const SemanticRun objects = run_semantic_job(sj);
       report["landmarks"] = objects.result.landmarks.size();
       std::printf("objects: %zu landmarks on %zu keyframes\n", objects.result.landmarks.size(), objects.keyframes.size());

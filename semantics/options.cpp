@@ -62,6 +62,11 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(pose_selection.max_distance, 1e-3, 100, "pose_selection.max_distance");
   c(pose_selection.alpha, 0, 1, "pose_selection.alpha");
   c(pose_selection.beta, 0, 1, "pose_selection.beta");
+  c(monocular.point_radius, 0, 50, "monocular.point_radius");
+  c(monocular.min_points, 1, 100000, "monocular.min_points");
+  c(monocular.near_quantile, 0, 1, "monocular.near_quantile");
+  c(monocular.max_box_overlap, 0, 1, "monocular.max_box_overlap");
+  c(monocular.min_scale_estimates, 1, 100000, "monocular.min_scale_estimates");
   if (c.err.tellp() == 0 && association.mode != "hierarchical" && association.mode != "hdp-only")
     c.err << "key 'semantics.association.mode': must be hierarchical or hdp-only, got '" << association.mode << "'";
   if (c.err.tellp() != 0) return c.err.str();
@@ -74,7 +79,8 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   using slam::io::read_option;
   SemanticOptions o;
   if (!s) return o;
-  const auto kf = s["keyframes"], m = s["measurement"], g = s["groups"], a = s["association"], p = s["pose_selection"];
+  const auto kf = s["keyframes"], m = s["measurement"], g = s["groups"], a = s["association"], p = s["pose_selection"],
+             mo = s["monocular"];
   read_option(kf, "semantics.keyframes", "min_translation", o.keyframes.min_translation, file);
   read_option(kf, "semantics.keyframes", "min_rotation_deg", o.keyframes.min_rotation_deg, file);
   read_option(kf, "semantics.keyframes", "max_interval", o.keyframes.max_interval, file);
@@ -127,6 +133,11 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(p, "semantics.pose_selection", "max_distance", o.pose_selection.max_distance, file);
   read_option(p, "semantics.pose_selection", "alpha", o.pose_selection.alpha, file);
   read_option(p, "semantics.pose_selection", "beta", o.pose_selection.beta, file);
+  read_option(mo, "semantics.monocular", "point_radius", o.monocular.point_radius, file);
+  read_option(mo, "semantics.monocular", "min_points", o.monocular.min_points, file);
+  read_option(mo, "semantics.monocular", "near_quantile", o.monocular.near_quantile, file);
+  read_option(mo, "semantics.monocular", "max_box_overlap", o.monocular.max_box_overlap, file);
+  read_option(mo, "semantics.monocular", "min_scale_estimates", o.monocular.min_scale_estimates, file);
   if (auto err = o.validate()) throw InputError(file.string(), *err);
   return o;
 }

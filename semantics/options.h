@@ -114,6 +114,17 @@ struct PoseSelectionOptions {
   double beta = 0.6;             // distance weight
 };
 
+// Monocular SLAM keyframes (Assoc. Eq. 1 "Pose" from the keyframe's map points): the points paint a
+// sparse depth image, and the map, whose unit is arbitrary, is brought to metres first by a scale
+// estimated from the box heights of upright classes (see semantics/monocular_scale.h).
+struct MonocularOptions {
+  int point_radius = 2;               // px: each map point fills a (2r+1) x (2r+1) square of the depth image
+  int min_points = 4;                 // map points needed inside a trimmed box, for a pose or a scale estimate
+  double near_quantile = 0.25;        // the object's depth for the scale: this quantile of its points' depths
+  double max_box_overlap = 0.1;       // a box overlapped more (share of its area) by another gives no scale estimate
+  int min_scale_estimates = 5;        // fewer usable detections in the run: no scale, no poses
+};
+
 struct SemanticOptions {
   KeyframeSelectionOptions keyframes;
   MeasurementOptions measurement;
@@ -121,6 +132,7 @@ struct SemanticOptions {
   mot::TrackerOptions tracker;
   AssociationOptions association;
   PoseSelectionOptions pose_selection;
+  MonocularOptions monocular;
   // Typical sizes (x across, y front-back, z up; metres) of the landmark classes, used to complete
   // a measurement that sees only the front of an object.
   std::map<std::string, std::array<double, 3>> class_sizes = {

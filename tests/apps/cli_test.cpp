@@ -4,6 +4,7 @@
 
 #include <fstream>
 #include <iterator>
+#include <nlohmann/json.hpp>
 
 #include "tests/apps/cli_support.h"
 #include "tests/slam/io/fixtures.h"
@@ -180,6 +181,28 @@ TEST(CliPipeline, MonocularRunIsAccurateAndDeterministic) {
   for (const char* f : {"trajectory.txt", "frames.csv", "keyframes.txt", "points.ply"})
     EXPECT_EQ(read_all(dir / "a" / f), read_all(dir / "b" / f)) << f << " differs between two --deterministic runs";
   EXPECT_NE(read_all(dir / "a" / "frames.csv").find(",backfilled,"), std::string::npos);
+}
+
+// Monocular SLAM then objects: measured on the keyframes' map points, never on the sequence's depth
+// images, with the map brought to metres by the upright detections' heights. The scale is checked
+// against the ground truth's (the report's Sim(3) alignment scale) and the objects' positions too.
+TEST(CliPipeline, MonocularObjectsAreMeasuredOnMapPointsAtAMetricScale) {
+  const fs::path dir = scratch_dir();
+  ASSERT_EQ(wardmap_cli("-q synth --scenario ward --variant slow --frames 150 --out " + shq(dir / "seq")).code, 0);
+  const CliResult r = wardmap_cli("-q run " + shq(dir / "seq") +
+                                  " --mode mono --deterministic --objects --no-embedding --out " + shq(dir / "run"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto report = nlohmann::json::parse(read_all(dir / "run" / "objects_report.json"));
+  const auto& scale = report.at("monocular_scale");
+  ASSERT_TRUE(scale.at("metres_per_map_unit").is_number()) << scale.dump();
+  EXPECT_GE(scale.at("estimates").get<int>(), 5);
+  const double ratio = scale.at("ground_truth_over_estimate").get<double>();
+  EXPECT_GT(ratio, 0.8) << scale.dump();
+  EXPECT_LT(ratio, 1.25) << scale.dump();
+  const auto& objects = report.at("objects");
+  EXPECT_GE(objects.at("objects_mapped").get<int>(), 3) << objects.dump();
+  EXPECT_LT(objects.at("position_error_mean").get<double>(), 0.6) << objects.dump();
+  EXPECT_GT(objects.at("association_accuracy").get<double>(), 70.0) << objects.dump();
 }
 
 // RGB-D with the mapper on its own thread (the default), twice: both accurate.
