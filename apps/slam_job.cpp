@@ -118,6 +118,13 @@ double run_slam_job(const SlamJob& job) {
                                   {"max", 1e3 * percentile(seconds, 1.0)}}},
                  // keyframes the threaded mapper registered without fusion, BA and culling (it was behind)
                  {"mapper_deferred_keyframes", front.mapper_stats().deferred}};
+  {
+    // What local mapping did, over the run (all submaps).
+    const auto& m = front.mapper_stats();
+    report["mapping"] = {{"keyframes", m.keyframes},         {"points_triangulated", m.triangulated},
+                         {"points_culled", m.culled_points}, {"points_fused", m.fused},
+                         {"keyframes_culled", m.culled_keyframes}};
+  }
   double rate = -1;
   std::string md = "# wardmap run (SLAM front-process)\n\n- sequence: `" + job.sequence.string() + "`\n- mode: " + mode +
                    "\n- frames: " + std::to_string(reader->size()) + ", in the final map: " + std::to_string(traj.size()) +
