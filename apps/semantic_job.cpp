@@ -7,6 +7,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "apps/detection_cache.h"
 #include "apps/progress.h"
 #include "semantics/detection/detector_factory.h"
 #include "semantics/detection/embedder.h"
@@ -27,29 +28,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-// Runs a detector once per frame: the monocular path asks for every keyframe's detections twice
-// (for the scale, then for the map), and the annotations back-end's noise must not be drawn twice.
-class OncePerFrameDetector : public semantics::Detector {
- public:
-  explicit OncePerFrameDetector(semantics::Detector& inner) : inner_(inner) {}
-  std::vector<semantics::Detection> detect(const cv::Mat& image, double timestamp) override {
-    const auto it = cache_.find(timestamp);
-    if (it != cache_.end()) return it->second;
-    const auto t0 = std::chrono::steady_clock::now();
-    auto& d = cache_[timestamp] = inner_.detect(image, timestamp);
-    seconds_.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    return d;
-  }
-  std::string name() const override { return inner_.name(); }
-  // Seconds of each call that ran the detector (not of the answers from the cache).
-  const std::vector<double>& seconds() const { return seconds_; }
-
- private:
-  semantics::Detector& inner_;
-  std::vector<double> seconds_;
-  std::map<double, std::vector<semantics::Detection>> cache_;
-};
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
@@ -79,15 +57,15 @@ std::string format_object_evaluation(const semantics::ObjectEvaluation& e) {
   return buf;
 }
 
-SemanticRun run_semantic_job(const SemanticJob& job) {
+SemanticSetup::~SemanticSetup() = default;  // DetectionCache is complete here
+
+std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
   auto reader = slam::io::open_sequence(job.sequence);
   const auto& info = reader->info();
-  if (!job.keyframes && !info.has_ground_truth)
-    throw InputError(job.sequence.string(), "--poses gt needs ground-truth poses, and this sequence has none");
-
+  auto setup = std::make_unique<SemanticSetup>();
   std::optional<slam::io::Settings> settings;
   if (!job.settings.empty()) settings = slam::io::load_settings(job.settings);
-  slam::PinholeCamera camera;
+  slam::PinholeCamera& camera = setup->camera;
   if (settings) camera = settings->camera.camera;
   else if (info.calibration) camera = *info.calibration;
   else
@@ -97,7 +75,7 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
                      "calibration is for " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
                          " images, the sequence's are " + std::to_string(info.width) + "x" + std::to_string(info.height));
 
-  semantics::SemanticOptions options;
+  semantics::SemanticOptions& options = setup->options;
   semantics::DetectorOptions det;
   if (settings) {
     options = semantics::load_semantic_options(settings->section("semantics"), job.settings);
@@ -112,11 +90,10 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
                      : info.kind == slam::io::DatasetKind::Kitti ? "road"
                                                                  : "indoor";
   if (auto err = det.validate()) throw InputError(job.settings.empty() ? "--detector" : job.settings.string(), *err);
-  auto detector = semantics::make_detector(det, job.sequence);
+  setup->detector = semantics::make_detector(det, job.sequence);
   semantics::SemanticMapper::EmbedFn embed;
-  std::shared_ptr<semantics::Embedder> embedder;
   if (job.embedding) {
-    embedder = std::make_shared<semantics::Embedder>(semantics::find_embedder_file(job.models_dir));
+    auto embedder = std::make_shared<semantics::Embedder>(semantics::find_embedder_file(job.models_dir));
     embed = [embedder](const cv::Mat& image, const Eigen::Vector4d& box) -> Eigen::VectorXf {
       try {
         return embedder->embed(image, box);
@@ -125,10 +102,24 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
       }
     };
   }
+  setup->cache = std::make_unique<DetectionCache>(*setup->detector, std::move(embed));
+  return setup;
+}
 
-  OncePerFrameDetector once(*detector);
+SemanticRun run_semantic_job(const SemanticJob& job) {
+  auto reader = slam::io::open_sequence(job.sequence);
+  const auto& info = reader->info();
+  if (!job.keyframes && !info.has_ground_truth)
+    throw InputError(job.sequence.string(), "--poses gt needs ground-truth poses, and this sequence has none");
+  std::unique_ptr<SemanticSetup> own_setup;
+  SemanticSetup* setup = job.setup;
+  if (!setup) setup = (own_setup = prepare_semantic_job(job)).get();
+  setup->cache->finish();  // the images queued while the SLAM ran are all detected
+  const slam::PinholeCamera& camera = setup->camera;
+  semantics::SemanticOptions options = setup->options;
+  DetectionCache& once = *setup->cache;
   if (job.keyframe_points) options.measurement = semantics::sparse_measurement_options(options);
-  semantics::SemanticMapper mapper(options, once, embed, camera);
+  semantics::SemanticMapper mapper(options, once, once.embed_fn(), camera);
   const slam::Trajectory& gt = reader->ground_truth();
   SemanticRun run;
   run.frames = static_cast<int>(reader->size());
@@ -171,8 +162,8 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
                      "objects get no pose", estimates.size(), options.monocular.min_scale_estimates);
       }
     }
-    const auto to_metric = [scale](slam::SE3 T) {
-      return slam::SE3(T.rotation(), T.translation() * scale);
+    const auto to_metric = [scale, points](const slam::SE3& T) {
+      return points ? slam::SE3(T.rotation(), T.translation() * scale) : T;
     };
     Progress progress("semantics", job.keyframes->size(), job.progress);
     for (size_t k = 0; k < job.keyframes->size(); ++k) {
@@ -206,7 +197,9 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
   run.measurements = mapper.measurements();
   run.keyframes = mapper.keyframes();
   run.times = mapper.times();
-  if (job.keyframe_points) run.times.detection = once.seconds();  // the mapper's calls hit the cache
+  // The mapper's calls may have been answered from the cache: the time of the real ones.
+  run.times.detection = once.detection_seconds();
+  run.times.embedding = once.embedding_seconds();
 
   // Object figures when the sequence has object ground truth (synthetic sequences).
   const fs::path truth_file = job.sequence / "objects.json", ann_file = job.sequence / "annotations.jsonl";
@@ -274,6 +267,9 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
                      job.detector + "\n- association: " + job.association + "\n- keyframes: " +
                      std::to_string(run.keyframes.size()) + ", groups: " + std::to_string(run.result.num_groups) +
                      ", landmarks: " + std::to_string(run.result.landmarks.size()) + "\n";
+    if (!own_run)  // keyframe images queued for detection while the SLAM ran (the rest: after it)
+      report["detection_during_slam"] = {{"keyframes_offered", once.offered()},
+                                         {"queue_full", once.refused()}};
     if (job.keyframe_points) {
       report["monocular_scale"] = {{"metres_per_map_unit", run.metric_scale ? json(*run.metric_scale) : json(nullptr)},
                                    {"estimates", run.scale_estimates}};

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,6 +19,9 @@
 #include "slam/core/trajectory.h"
 
 namespace wardmap::apps {
+
+class DetectionCache;
+struct SemanticSetup;
 
 struct SemanticJob {
   std::filesystem::path sequence;
@@ -41,7 +45,21 @@ struct SemanticJob {
   // scale the detections give (semantics/monocular_scale.h), never on the sequence's depth images;
   // the objects, the trajectory in map.glb and the evaluation are in that metric frame.
   const std::vector<std::vector<Eigen::Vector3d>>* keyframe_points = nullptr;
+  // Prepared beforehand (prepare_semantic_job), e.g. to detect keyframes while the SLAM runs.
+  // Null: prepared by run_semantic_job.
+  SemanticSetup* setup = nullptr;
 };
+
+// What a semantic job runs with, from its settings and flags (errors name the file or the flag).
+struct SemanticSetup {
+  slam::PinholeCamera camera;
+  semantics::SemanticOptions options;
+  std::unique_ptr<semantics::Detector> detector;
+  std::unique_ptr<DetectionCache> cache;  // the detector and the embedder, once per image
+  ~SemanticSetup();
+};
+
+std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job);
 
 struct SemanticRun {
   semantics::AssociationResult result;

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <nlohmann/json.hpp>
 
+#include "apps/detection_cache.h"
 #include "apps/progress.h"
 #include "slam/core/errors.h"
 #include "slam/eval/trajectory_eval.h"
@@ -23,6 +24,10 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
+
+// Keyframe images waiting for detection while the SLAM runs; a keyframe arriving when it is full is
+// detected after the run instead (the tracker never waits). 16 VGA images: about 15 MB.
+constexpr size_t kDetectionQueue = 16;
 
 double percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0;
@@ -83,10 +88,25 @@ double run_slam_job(const SlamJob& job) {
   std::vector<std::string> statuses;
   std::vector<int> submap_of;
   char line[160];
+  // Objects: keyframe images are detected (and embedded) on a thread of their own while the SLAM
+  // runs; measurement and association wait for the final keyframe poses. --deterministic: after.
+  SemanticJob objects_job;
+  std::unique_ptr<SemanticSetup> objects_setup;
+  if (job.objects) {
+    objects_job = *job.objects;
+    objects_job.sequence = job.sequence;
+    objects_job.settings = settings_file;
+    objects_job.out = job.out;
+    objects_setup = prepare_semantic_job(objects_job);
+    objects_job.setup = objects_setup.get();
+    if (!job.deterministic) objects_setup->cache->start(kDetectionQueue);
+  }
   Progress progress("slam", reader->size(), job.progress);
   for (size_t i = 0; i < reader->size(); ++i) {
     progress.update(i + 1);
-    const slam::FrameResult r = front.process(reader->read(i));
+    const slam::io::Frame frame = reader->read(i);
+    const slam::FrameResult r = front.process(frame);
+    if (r.keyframe && objects_setup) objects_setup->cache->offer(frame.timestamp, frame.image);
     statuses.push_back(r.relocalised ? "relocalised"
                        : r.tracked ? "tracked"
                        : r.state == slam::TrackingState::kNotInitialised ? "initialising"
@@ -202,10 +222,7 @@ double run_slam_job(const SlamJob& job) {
                                                       ply_body);
     report["keyframes"] = kfs.size();
     if (job.objects) {
-      SemanticJob sj = *job.objects;
-      sj.sequence = job.sequence;
-      sj.settings = settings_file;
-      sj.out = job.out;
+      SemanticJob& sj = objects_job;
       sj.keyframes = &kfs;
       sj.trajectory = &traj;
       if (options.monocular) sj.keyframe_points = &keyframe_points;
