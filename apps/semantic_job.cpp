@@ -139,7 +139,7 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
       throw std::logic_error("run_semantic_job: keyframe_points must be parallel to keyframes");
     double scale = 1;
     if (points) {
-      // Monocular: the scale from the upright detections first (their detections are kept for the map).
+      // Monocular: the scale from the scale-class detections first (their detections are kept for the map).
       std::vector<double> estimates;
       Progress progress("object scale", job.keyframes->size(), job.progress);
       for (size_t k = 0; k < job.keyframes->size(); ++k) {
@@ -156,9 +156,10 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
       run.metric_scale = semantics::metric_scale(estimates, options.monocular);
       if (run.metric_scale) {
         scale = *run.metric_scale;
-        spdlog::info("monocular objects: {:.4f} m per map unit (median of {} upright detections)", scale, estimates.size());
+        spdlog::info("monocular objects: {:.4f} m per map unit (median of {} detections of scale classes)", scale, estimates.size());
       } else {
-        spdlog::warn("monocular objects: only {} upright detections with map points, {} needed for a metric scale; "
+        spdlog::warn("monocular objects: only {} detections of scale classes (semantics.monocular.scale_classes) with map "
+                     "points, {} needed for a metric scale; "
                      "objects get no pose", estimates.size(), options.monocular.min_scale_estimates);
       }
     }
@@ -275,7 +276,7 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
                                    {"estimates", run.scale_estimates}};
       md += "- monocular map scale: " +
             (run.metric_scale ? std::to_string(*run.metric_scale) + " m per map unit" : std::string("none (no poses)")) +
-            " from " + std::to_string(run.scale_estimates) + " upright detections\n";
+            " from " + std::to_string(run.scale_estimates) + " detections of scale classes\n";
       if (run.alignment_scale) {
         report["monocular_scale"]["ground_truth_over_estimate"] = *run.alignment_scale;
         md += "- ground-truth scale / estimated scale: " + std::to_string(*run.alignment_scale) + "\n";

@@ -22,17 +22,14 @@ cv::Mat sparse_depth_image(const std::vector<Eigen::Vector3d>& points_cam, const
   return depth;
 }
 
-bool upright_class(const std::string& label, const SemanticOptions& options) {
-  const auto it = options.class_sizes.find(label);
-  if (it == options.class_sizes.end()) return false;
-  const auto& s = it->second;
-  return s[2] >= std::max(s[0], s[1]);
+bool scale_class(const std::string& label, const SemanticOptions& options) {
+  return options.monocular.scale_classes.count(label) > 0 && options.class_sizes.count(label) > 0;
 }
 
 std::optional<double> scale_estimate(const std::vector<Eigen::Vector3d>& points_cam, const slam::PinholeCamera& camera,
                                      const Eigen::Vector4d& box, const std::string& label,
                                      const SemanticOptions& options) {
-  if (!upright_class(label, options)) return std::nullopt;
+  if (!scale_class(label, options)) return std::nullopt;
   const MeasurementOptions& m = options.measurement;
   const double h = box(3) - box(1), w = box(2) - box(0);
   if (h < m.min_box_side || w < m.min_box_side) return std::nullopt;

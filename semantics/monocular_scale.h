@@ -1,9 +1,10 @@
 // Object measurements on monocular SLAM keyframes (Assoc. Eq. 1 "Pose" from the keyframe's map
 // points). A monocular map has no unit: the measurement rules and the association model are in
 // metres (class sizes, depth windows, sigma_position). The map is brought to metres by a scale
-// estimated from the detections themselves: an upright object's box height in pixels, at the depth
-// of the map points inside the box, gives its height in map units; its class's typical height gives
-// it in metres. The median over the run's detections is the scale.
+// estimated from the detections themselves: the box height in pixels of an object whose box shows
+// its height (monocular.scale_classes), at the depth of the map points inside the box, gives its
+// height in map units; its class's typical height gives it in metres. The median over the run's
+// detections is the scale.
 #pragma once
 
 #include <optional>
@@ -24,13 +25,12 @@ namespace wardmap::semantics {
 cv::Mat sparse_depth_image(const std::vector<Eigen::Vector3d>& points_cam, const slam::PinholeCamera& camera,
                            int radius, double scale = 1.0);
 
-// Classes whose box height is their height (standing objects at least as tall as they are wide and
-// deep: door, chair, cabinet, pole); the others (a bed, a screen) show their depth or width in it.
-bool upright_class(const std::string& label, const SemanticOptions& options);
+// Whether the class's box height is its height (monocular.scale_classes, with a typical size).
+bool scale_class(const std::string& label, const SemanticOptions& options);
 
 // One estimate of metres per map unit from one detection: the class's height over the box's height
 // at the object's depth (the near_quantile of the depths of the points inside the trimmed box).
-// None for non-upright classes, boxes cut at the top or bottom border, or fewer than
+// None for other classes, boxes cut at the top or bottom border, or fewer than
 // monocular.min_points points in the box.
 std::optional<double> scale_estimate(const std::vector<Eigen::Vector3d>& points_cam, const slam::PinholeCamera& camera,
                                      const Eigen::Vector4d& box, const std::string& label,

@@ -137,6 +137,17 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(mo, "semantics.monocular", "min_points", o.monocular.min_points, file);
   read_option(mo, "semantics.monocular", "near_quantile", o.monocular.near_quantile, file);
   read_option(mo, "semantics.monocular", "max_box_overlap", o.monocular.max_box_overlap, file);
+  if (mo && mo["scale_classes"]) {
+    const YAML::Node list = mo["scale_classes"];
+    if (!list.IsSequence())
+      throw InputError(file.string(), "key 'semantics.monocular.scale_classes': must be a list of class names");
+    o.monocular.scale_classes.clear();
+    for (const auto& c : list) {
+      if (!c.IsScalar())
+        throw InputError(file.string(), "key 'semantics.monocular.scale_classes': must be a list of class names");
+      o.monocular.scale_classes.insert(c.as<std::string>());
+    }
+  }
   read_option(mo, "semantics.monocular", "min_scale_estimates", o.monocular.min_scale_estimates, file);
   if (auto err = o.validate()) throw InputError(file.string(), *err);
   return o;

@@ -116,8 +116,12 @@ struct PoseSelectionOptions {
 
 // Monocular SLAM keyframes (Assoc. Eq. 1 "Pose" from the keyframe's map points): the points paint a
 // sparse depth image, and the map, whose unit is arbitrary, is brought to metres first by a scale
-// estimated from the box heights of upright classes (see semantics/monocular_scale.h).
+// estimated from the box heights of the scale classes (see semantics/monocular_scale.h).
 struct MonocularOptions {
+  // Classes whose box height is their height, for the scale: standing objects at least as tall as
+  // they are wide and deep, and those a camera at about their height sees (a car's top is barely
+  // visible from a car's camera). Not a bed or a screen: their boxes show their length or width.
+  std::set<std::string> scale_classes = {"door", "chair", "cabinet", "iv_pole", "person", "vehicle"};
   int point_radius = 2;               // px: each map point fills a (2r+1) x (2r+1) square of the depth image
   int min_points = 4;                 // map points needed inside a trimmed box, for a pose or a scale estimate
   double near_quantile = 0.25;        // the object's depth for the scale: this quantile of its points' depths
@@ -139,7 +143,9 @@ struct SemanticOptions {
       {"door", {0.9, 0.06, 2.05}}, {"chair", {0.5, 0.5, 0.9}},   {"bed", {0.95, 2.0, 0.6}},
       {"cabinet", {0.45, 0.45, 0.8}}, {"wheelchair", {0.65, 1.0, 0.9}}, {"iv_pole", {0.5, 0.5, 1.8}},
       // Indoor COCO: a desktop screen on its stand (24 inch).
-      {"tv", {0.55, 0.15, 0.45}}};
+      {"tv", {0.55, 0.15, 0.45}},
+      // Road: a car (the road landmark set maps car and truck to vehicle), a standing person.
+      {"vehicle", {1.8, 4.5, 1.5}}, {"person", {0.5, 0.3, 1.7}}};
 
   // Classes whose box is mostly background (measured on their nearest surface): a chair's box is
   // mostly what is seen between its legs and above its seat (the fullest window placed synthetic

@@ -26,13 +26,15 @@ TEST(SparseDepth, PaintsSquaresNearestFirstAndScalesDepths) {
   EXPECT_EQ(cv::countNonZero(d), 25);            // the point behind the camera paints nothing
 }
 
-TEST(SparseDepth, UprightClassesAreTheStandingOnes) {
+TEST(SparseDepth, ScaleClassesHaveATypicalSize) {
   SemanticOptions o;
-  EXPECT_TRUE(upright_class("door", o));
-  EXPECT_TRUE(upright_class("chair", o));
-  EXPECT_FALSE(upright_class("bed", o));    // its box height shows its length
-  EXPECT_FALSE(upright_class("tv", o));     // wider than tall
-  EXPECT_FALSE(upright_class("plant", o));  // no typical size
+  EXPECT_TRUE(scale_class("door", o));
+  EXPECT_TRUE(scale_class("chair", o));
+  EXPECT_TRUE(scale_class("vehicle", o));
+  EXPECT_FALSE(scale_class("bed", o));  // its box height shows its length
+  EXPECT_FALSE(scale_class("tv", o));   // its width
+  o.monocular.scale_classes.insert("plant");
+  EXPECT_FALSE(scale_class("plant", o));  // no typical size
 }
 
 // A door (2.05 m tall) at 4 m seen by a map whose unit is 2.5 m: its points are at 1.6 units, and
@@ -105,6 +107,29 @@ TEST(MetricScale, SparsePointsMeasureLikeDenseDepth) {
   // Too few points in the box: no pose.
   const std::vector<Eigen::Vector3d> few(pts.begin(), pts.begin() + 2);
   EXPECT_FALSE(measure_pose_from_depth(sparse_depth_image(few, cam, 2, unit), cam, slam::SE3(), box, up, "cabinet", sparse));
+}
+
+}  // namespace
+}  // namespace wardmap::semantics
+
+namespace wardmap::semantics {
+namespace {
+
+// The `semantics.monocular` keys load over the defaults; a bad one is named in the error.
+TEST(MonocularOptions, LoadFromYamlAndNameABadKey) {
+  const auto o = load_semantic_options(YAML::Load("monocular: {scale_classes: [door, vehicle], min_points: 6}"), "s.yaml");
+  EXPECT_EQ(o.monocular.scale_classes, (std::set<std::string>{"door", "vehicle"}));
+  EXPECT_EQ(o.monocular.min_points, 6);
+  const auto message = [](const char* yaml) {
+    try {
+      load_semantic_options(YAML::Load(yaml), "s.yaml");
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message("monocular: {scale_classes: door}").find("semantics.monocular.scale_classes"), std::string::npos);
+  EXPECT_NE(message("monocular: {near_quantile: 2}").find("semantics.monocular.near_quantile"), std::string::npos);
 }
 
 }  // namespace
