@@ -56,24 +56,31 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
     fixed[kf->id()] = kf;
   }
 
-  std::map<KeyFrameId, std::array<double, 7>> poses;  // qx qy qz qw tx ty tz
+  // Parameter blocks live in contiguous vectors filled in a fixed order: Ceres sorts the blocks of
+  // an elimination group by address, so blocks scattered over the heap would be eliminated in an
+  // order that changes from run to run (last digits of --deterministic output, seen under ASan).
+  std::vector<std::array<double, 7>> pose_blocks;  // qx qy qz qw tx ty tz
+  std::map<KeyFrameId, size_t> pose_index;
   auto add_pose = [&](const std::shared_ptr<KeyFrame>& kf) {
     const Eigen::Quaterniond q = kf->pose_cw().rotation().normalized();
     const Eigen::Vector3d& t = kf->pose_cw().translation();
-    poses[kf->id()] = {q.x(), q.y(), q.z(), q.w(), t.x(), t.y(), t.z()};
+    pose_index[kf->id()] = pose_blocks.size();
+    pose_blocks.push_back({q.x(), q.y(), q.z(), q.w(), t.x(), t.y(), t.z()});
   };
   for (const auto& kf : local) add_pose(kf);
   for (const auto& [id, kf] : fixed) add_pose(kf);
-  std::unordered_map<MapPointId, std::array<double, 3>> positions;
+  std::vector<std::array<double, 3>> position_blocks;
+  std::unordered_map<MapPointId, size_t> position_index;
   std::vector<BAObservation> observations;
   for (const auto& mp : points) {
     int n = 0;
     for (const auto& [id, obs] : mp->observations())
-      if (poses.count(id)) ++n;
+      if (pose_index.count(id)) ++n;
     if (n < 2) continue;  // a point seen once is not constrained (docs/TOOLCHAIN.md)
-    positions[mp->id()] = {mp->position().x(), mp->position().y(), mp->position().z()};
+    position_index[mp->id()] = position_blocks.size();
+    position_blocks.push_back({mp->position().x(), mp->position().y(), mp->position().z()});
     for (const auto& [id, obs] : mp->observations())
-      if (poses.count(id))
+      if (pose_index.count(id))
         if (auto kf = obs.keyframe.lock(); kf && !kf->bad()) observations.push_back({kf.get(), mp.get(), obs.index});
   }
   if (observations.empty()) return result;
@@ -83,8 +90,8 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
   for (const auto& [id, kf] : fixed) constant.insert(id);
   if (submap.origin()) constant.insert(submap.origin()->id());
   bool any_fixed = false;
-  for (const auto& [id, p] : poses) any_fixed |= constant.count(id) > 0;
-  if (!any_fixed) constant.insert(poses.begin()->first);
+  for (const auto& [id, i] : pose_index) any_fixed |= constant.count(id) > 0;
+  if (!any_fixed) constant.insert(pose_index.begin()->first);
 
   const PinholeIntrinsics K{camera.fx, camera.fy, camera.cx, camera.cy, keyframe->features().bf};
   std::vector<char> inlier(observations.size(), 1);
@@ -107,14 +114,15 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
       ceres::LossFunction* loss =
           robust ? new ceres::HuberLoss(std::sqrt(stereo ? options.tracking.chi2_stereo : options.tracking.chi2_mono))
                  : nullptr;
-      double* pose = poses[o.keyframe->id()].data();
-      double* point = positions[o.point->id()].data();
+      double* pose = pose_blocks[pose_index.at(o.keyframe->id())].data();
+      double* point = position_blocks[position_index.at(o.point->id())].data();
       problem.AddResidualBlock(cost, loss, pose, pose + 4, point);
       ordering->AddElementToGroup(point, 0);
       ordering->AddElementToGroup(pose, 1);
       ordering->AddElementToGroup(pose + 4, 1);
     }
-    for (auto& [id, p] : poses) {
+    for (const auto& [id, i] : pose_index) {
+      auto& p = pose_blocks[i];
       if (!problem.HasParameterBlock(p.data())) continue;
       problem.SetManifold(p.data(), &quaternion_manifold);
       if (constant.count(id)) {
@@ -135,7 +143,7 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
   };
 
   auto pose_of = [&](KeyFrameId id) {
-    const auto& p = poses.at(id);
+    const auto& p = pose_blocks[pose_index.at(id)];
     return SE3(Eigen::Quaterniond(p[3], p[0], p[1], p[2]).normalized(), Eigen::Vector3d(p[4], p[5], p[6]));
   };
   auto classify = [&]() {
@@ -144,7 +152,7 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
       const BAObservation& o = observations[i];
       const FrameFeatures& f = o.keyframe->features();
       const size_t k = static_cast<size_t>(o.index);
-      const auto& x = positions.at(o.point->id());
+      const auto& x = position_blocks[position_index.at(o.point->id())];
       PoseObservation po{Eigen::Vector3d(x[0], x[1], x[2]), f.points[k], f.right_u[k],
                          f.pyramid->inv_scale[static_cast<size_t>(f.levels[k])]};
       const double chi2 = observation_chi2(pose_of(o.keyframe->id()), po, camera, K.bf);
@@ -173,15 +181,16 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
     o.point->erase_observation(o.keyframe->id());
   }
   for (const auto& mp : points) {
-    auto it = positions.find(mp->id());
-    if (it == positions.end() || mp->bad()) continue;
-    mp->set_position(Eigen::Vector3d(it->second[0], it->second[1], it->second[2]));
+    auto it = position_index.find(mp->id());
+    if (it == position_index.end() || mp->bad()) continue;
+    const auto& x = position_blocks[it->second];
+    mp->set_position(Eigen::Vector3d(x[0], x[1], x[2]));
     mp->update_normal_and_depth();
   }
   submap.purge_bad_points();
   result.keyframes = static_cast<int>(local.size());
   result.fixed_keyframes = static_cast<int>(fixed.size());
-  result.points = static_cast<int>(positions.size());
+  result.points = static_cast<int>(position_blocks.size());
   result.observations = static_cast<int>(observations.size());
   return result;
 }
