@@ -11,6 +11,9 @@ cv::Mat sparse_depth_image(const std::vector<Eigen::Vector3d>& points_cam, const
   for (const Eigen::Vector3d& p : points_cam) {
     if (!(p.z() > 0) || !p.allFinite()) continue;
     const Eigen::Vector2d px = camera.project(p);
+    if (!px.allFinite() || px.x() < -radius - 1 || px.y() < -radius - 1 || px.x() > camera.width + radius ||
+        px.y() > camera.height + radius)
+      continue;  // outside the image (also keeps the rounding below in range)
     const int u = static_cast<int>(std::lround(px.x())), v = static_cast<int>(std::lround(px.y()));
     const float z = static_cast<float>(p.z() * scale);
     for (int y = std::max(0, v - radius); y <= std::min(camera.height - 1, v + radius); ++y) {

@@ -17,13 +17,14 @@ TEST(SparseDepth, PaintsSquaresNearestFirstAndScalesDepths) {
   const auto cam = camera();
   // Two points on one pixel's ray at depths 2 and 3 (map units), one behind the camera.
   const Eigen::Vector3d ray = cam.unproject(Eigen::Vector2d(100, 200));
-  const std::vector<Eigen::Vector3d> pts = {ray * 3.0, ray * 2.0, Eigen::Vector3d(0, 0, -1)};
+  const std::vector<Eigen::Vector3d> pts = {ray * 3.0, ray * 2.0, Eigen::Vector3d(0, 0, -1),
+                                            Eigen::Vector3d(1e12, 0, 1e-3)};  // far outside the image
   const cv::Mat d = sparse_depth_image(pts, cam, 2, 1.5);
   ASSERT_EQ(d.type(), CV_32F);
   EXPECT_FLOAT_EQ(d.at<float>(200, 100), 3.0f);  // 2 units x 1.5 m per unit: the nearer point wins
   EXPECT_FLOAT_EQ(d.at<float>(202, 98), 3.0f);   // inside the 5 x 5 square
   EXPECT_FLOAT_EQ(d.at<float>(203, 100), 0.0f);  // outside it
-  EXPECT_EQ(cv::countNonZero(d), 25);            // the point behind the camera paints nothing
+  EXPECT_EQ(cv::countNonZero(d), 25);  // the points behind the camera and outside the image paint nothing
 }
 
 TEST(SparseDepth, ScaleClassesHaveATypicalSize) {
