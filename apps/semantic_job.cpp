@@ -4,7 +4,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <map>
 #include <nlohmann/json.hpp>
 
 #include "apps/detection_cache.h"
@@ -117,9 +116,9 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
   setup->cache->finish();  // the images queued while the SLAM ran are all detected
   const slam::PinholeCamera& camera = setup->camera;
   semantics::SemanticOptions options = setup->options;
-  DetectionCache& once = *setup->cache;
+  DetectionCache& cache = *setup->cache;
   if (job.keyframe_points) options.measurement = semantics::sparse_measurement_options(options);
-  semantics::SemanticMapper mapper(options, once, once.embed_fn(), camera);
+  semantics::SemanticMapper mapper(options, cache, cache.embed_fn(), camera);
   const slam::Trajectory& gt = reader->ground_truth();
   SemanticRun run;
   run.frames = static_cast<int>(reader->size());
@@ -147,7 +146,7 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
         const slam::io::Frame f = frame_of(k);
         std::vector<Eigen::Vector4d> boxes;
         std::vector<std::string> labels;
-        for (const auto& d : once.detect(f.image, f.timestamp)) boxes.push_back(d.box), labels.push_back(d.label);
+        for (const auto& d : cache.detect(f.image, f.timestamp)) boxes.push_back(d.box), labels.push_back(d.label);
         for (double e : semantics::keyframe_scale_estimates((*points)[k], camera, boxes, labels, options))
           estimates.push_back(e);
       }
@@ -199,8 +198,8 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
   run.keyframes = mapper.keyframes();
   run.times = mapper.times();
   // The mapper's calls may have been answered from the cache: the time of the real ones.
-  run.times.detection = once.detection_seconds();
-  run.times.embedding = once.embedding_seconds();
+  run.times.detection = cache.detection_seconds();
+  run.times.embedding = cache.embedding_seconds();
 
   // Object figures when the sequence has object ground truth (synthetic sequences).
   const fs::path truth_file = job.sequence / "objects.json", ann_file = job.sequence / "annotations.jsonl";
@@ -269,8 +268,8 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
                      std::to_string(run.keyframes.size()) + ", groups: " + std::to_string(run.result.num_groups) +
                      ", landmarks: " + std::to_string(run.result.landmarks.size()) + "\n";
     if (!own_run)  // keyframe images queued for detection while the SLAM ran (the rest: after it)
-      report["detection_during_slam"] = {{"keyframes_offered", once.offered()},
-                                         {"queue_full", once.refused()}};
+      report["detection_during_slam"] = {{"keyframes_offered", cache.offered()},
+                                         {"queue_full", cache.refused()}};
     if (job.keyframe_points) {
       report["monocular_scale"] = {{"metres_per_map_unit", run.metric_scale ? json(*run.metric_scale) : json(nullptr)},
                                    {"estimates", run.scale_estimates}};
