@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "semantics/object_metrics.h"
+
 namespace wardmap::semantics {
 
 cv::Mat sparse_depth_image(const std::vector<Eigen::Vector3d>& points_cam, const slam::PinholeCamera& camera,
@@ -64,12 +66,8 @@ std::vector<double> keyframe_scale_estimates(const std::vector<Eigen::Vector3d>&
     const Eigen::Vector4d& a = boxes[i];
     const double area = (a(2) - a(0)) * (a(3) - a(1));
     bool overlapped = false;
-    for (size_t j = 0; j < boxes.size() && !overlapped; ++j) {
-      if (j == i) continue;
-      const Eigen::Vector4d& b = boxes[j];
-      const double w = std::min(a(2), b(2)) - std::max(a(0), b(0)), h = std::min(a(3), b(3)) - std::max(a(1), b(1));
-      overlapped = w > 0 && h > 0 && w * h > options.monocular.max_box_overlap * area;
-    }
+    for (size_t j = 0; j < boxes.size() && !overlapped; ++j)
+      overlapped = j != i && box_intersection(a, boxes[j]) > options.monocular.max_box_overlap * area;
     if (overlapped) continue;
     if (auto e = scale_estimate(points_cam, camera, a, labels[i], options)) out.push_back(*e);
   }

@@ -371,10 +371,9 @@ std::vector<std::vector<int>> nearer_overlapping_detections(const cv::Mat& depth
       if (!nearer_by_depth && !nearer_by_footprint) continue;
       // A much larger box that holds most of mine is what I stand on or in front of (a cup on a
       // table), not an occluder; a neighbour of my size in front of me is.
-      const double iw = std::min(a(2), b(2)) - std::max(a(0), b(0)), ih = std::min(a(3), b(3)) - std::max(a(1), b(1));
       const double area_a = (a(2) - a(0)) * (a(3) - a(1)), area_b = (b(2) - b(0)) * (b(3) - b(1));
       const bool support = j < supports.size() && supports[j];
-      if (support && !nearer_by_depth && iw > 0 && ih > 0 && area_a > 0 && iw * ih / area_a > o.support_containment &&
+      if (support && !nearer_by_depth && area_a > 0 && box_intersection(a, b) / area_a > o.support_containment &&
           area_b > o.support_area_ratio * area_a)
         continue;
       out[i].push_back(static_cast<int>(j));

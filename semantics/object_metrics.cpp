@@ -23,10 +23,14 @@ const std::vector<AnnotatedObject>* annotations_at(const Annotations& a, double 
   return &it->second;
 }
 
-double box_iou(const Eigen::Vector4d& a, const Eigen::Vector4d& b) {
+double box_intersection(const Eigen::Vector4d& a, const Eigen::Vector4d& b) {
   const double w = std::min(a(2), b(2)) - std::max(a(0), b(0)), h = std::min(a(3), b(3)) - std::max(a(1), b(1));
-  if (w <= 0 || h <= 0) return 0.0;
-  const double inter = w * h;
+  return w > 0 && h > 0 ? w * h : 0.0;
+}
+
+double box_iou(const Eigen::Vector4d& a, const Eigen::Vector4d& b) {
+  const double inter = box_intersection(a, b);
+  if (inter <= 0) return 0.0;
   return inter / ((a(2) - a(0)) * (a(3) - a(1)) + (b(2) - b(0)) * (b(3) - b(1)) - inter);
 }
 

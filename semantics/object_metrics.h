@@ -52,6 +52,8 @@ ObjectEvaluation evaluate_objects(const std::vector<MeasurementRecord>& measurem
                                   const std::vector<TrueObject>& truth, const Annotations& annotations,
                                   const slam::Sim3& alignment, const ObjectEvalOptions& options = {});
 
+// Area shared by two boxes (x0 y0 x1 y1; 0 when they do not overlap), and intersection over union.
+double box_intersection(const Eigen::Vector4d& a, const Eigen::Vector4d& b);
 double box_iou(const Eigen::Vector4d& a, const Eigen::Vector4d& b);
 
 }  // namespace wardmap::semantics
