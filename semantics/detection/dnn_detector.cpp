@@ -23,7 +23,7 @@ DnnDetector::DnnDetector(ModelDescription model, const fs::path& onnx_file, cons
     group_of_class_.push_back(label.empty() ? -1 : group_ids.emplace(label, next).first->second);
   }
 
-  net_ = load_onnx_net(onnx_file, "model file not found");
+  net_ = load_onnx_net(onnx_file, "model file not found", input_fold_);
 
   output_names_ = model_.output.names;
   output_names_.insert(output_names_.end(), model_.output.box_names.begin(), model_.output.box_names.end());
@@ -40,7 +40,7 @@ DnnDetector::DnnDetector(ModelDescription model, const fs::path& onnx_file, cons
 std::vector<Detection> DnnDetector::detect(const cv::Mat& image, double /*timestamp*/) {
   const cv::Mat bgr = to_bgr8(image);
   const Letterbox lb = make_letterbox(bgr, model_.input);
-  net_.setInput(lb.blob);
+  net_.setInput(input_fold_ ? input_fold_->apply(lb.blob) : lb.blob);
   std::vector<cv::Mat> outputs;
   net_.forward(outputs, output_names_);
 

@@ -5,11 +5,13 @@
 
 #include <filesystem>
 #include <opencv2/dnn.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "semantics/detection/detection.h"
 #include "semantics/detection/model_description.h"
+#include "semantics/detection/onnx_fold.h"
 
 namespace wardmap::semantics {
 
@@ -36,6 +38,7 @@ class DnnDetector : public Detector {
   std::vector<std::string> landmark_of_class_;  // "" = dropped in this landmark set
   std::vector<int> group_of_class_;             // NMS group: index of the landmark label
   cv::dnn::Net net_;
+  std::optional<SpaceToDepth> input_fold_;  // YOLOX's Focus stage done in C++ (onnx_fold.h)
   std::vector<std::string> output_names_;  // requested by name (NanoDet's unconnected order differs)
 };
 

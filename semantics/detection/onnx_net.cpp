@@ -1,21 +1,58 @@
 #include "semantics/detection/onnx_net.h"
 
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+
+#include <spdlog/spdlog.h>
+
 #include "slam/core/errors.h"
 
 namespace wardmap::semantics {
 
-cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint) {
-  if (!std::filesystem::is_regular_file(file)) throw InputError(file.string(), missing_hint);
-  cv::dnn::Net net;
-  try {
-    net = cv::dnn::readNetFromONNX(file.string());
-  } catch (const cv::Exception& ex) {
-    throw InputError(file.string(), "cannot load the ONNX model: " + ex.msg);
-  }
+namespace {
+
+cv::dnn::Net on_cpu(cv::dnn::Net net, const std::filesystem::path& file) {
   if (net.empty()) throw InputError(file.string(), "cannot load the ONNX model (empty network)");
   net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
   net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
   return net;
+}
+
+}  // namespace
+
+cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint) {
+  if (!std::filesystem::is_regular_file(file)) throw InputError(file.string(), missing_hint);
+  try {
+    return on_cpu(cv::dnn::readNetFromONNX(file.string()), file);
+  } catch (const cv::Exception& ex) {
+    throw InputError(file.string(), "cannot load the ONNX model: " + ex.msg);
+  }
+}
+
+cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint,
+                           std::optional<SpaceToDepth>& folded) {
+  folded.reset();
+  if (!std::filesystem::is_regular_file(file)) throw InputError(file.string(), missing_hint);
+  std::ifstream in(file, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in && !in.eof()) throw InputError(file.string(), "cannot read the ONNX model");
+  std::optional<FoldedModel> rewritten;
+  try {
+    rewritten = fold_space_to_depth_input(bytes);
+  } catch (const std::runtime_error& ex) {
+    throw InputError(file.string(), std::string("not an ONNX model: ") + ex.what());
+  }
+  if (!rewritten) return load_onnx_net(file, missing_hint);
+  try {
+    cv::dnn::Net net = on_cpu(cv::dnn::readNetFromONNX(rewritten->onnx.data(), rewritten->onnx.size()), file);
+    folded = std::move(rewritten->input);
+    return net;
+  } catch (const cv::Exception& ex) {  // our rewrite's fault, not the user's: use the model as it is
+    spdlog::warn("{}: the model with its input stage folded does not load ({}); using it unchanged", file.string(),
+                 ex.msg);
+    return load_onnx_net(file, missing_hint);
+  }
 }
 
 }  // namespace wardmap::semantics

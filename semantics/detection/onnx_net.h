@@ -3,12 +3,21 @@
 
 #include <filesystem>
 #include <opencv2/dnn.hpp>
+#include <optional>
 #include <string>
+
+#include "semantics/detection/onnx_fold.h"
 
 namespace wardmap::semantics {
 
 // Throws InputError(file, missing_hint) when the file is absent, InputError(file, ...) when OpenCV
 // cannot load it.
 cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint);
+
+// The same, with a strided-slice input stage folded out of the graph (onnx_fold.h) when the model
+// has one: `folded` then says how to rearrange the input blob before Net::setInput; it is left
+// empty when the model is loaded as it is.
+cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint,
+                           std::optional<SpaceToDepth>& folded);
 
 }  // namespace wardmap::semantics

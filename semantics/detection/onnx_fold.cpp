@@ -1,0 +1,276 @@
+#include "semantics/detection/onnx_fold.h"
+
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+#include "semantics/detection/protobuf_wire.h"
+
+namespace wardmap::semantics {
+
+namespace {
+
+// Field numbers of onnx.proto (ONNX IR).
+constexpr std::uint32_t kModelGraph = 7;
+constexpr std::uint32_t kGraphNode = 1, kGraphInitializer = 5, kGraphInput = 11, kGraphOutput = 12,
+                        kGraphValueInfo = 13;
+constexpr std::uint32_t kNodeInput = 1, kNodeOutput = 2, kNodeOpType = 4, kNodeAttribute = 5;
+constexpr std::uint32_t kValueInfoName = 1, kValueInfoType = 2;
+constexpr std::uint32_t kTypeTensorType = 1, kTensorTypeElemType = 1, kTensorTypeShape = 2, kShapeDim = 1,
+                        kDimValue = 1;
+constexpr std::uint32_t kTensorDataType = 2, kTensorInt32Data = 5, kTensorInt64Data = 7, kTensorName = 8,
+                        kTensorRawData = 9;
+constexpr std::uint32_t kAttributeName = 1, kAttributeInt = 3, kAttributeTensor = 5;
+constexpr std::int64_t kOnnxInt32 = 6, kOnnxInt64 = 7;
+
+std::string first_string(const std::vector<wire::Field>& fields, std::uint32_t number) {
+  const std::vector<std::string> all = wire::strings(fields, number);
+  return all.empty() ? std::string() : all.front();
+}
+
+// The integers of a constant INT64 / INT32 tensor (TensorProto bytes), nullopt for other types.
+std::optional<std::vector<std::int64_t>> tensor_integers(const std::string& tensor) {
+  const std::vector<wire::Field> fields = wire::parse(tensor);
+  const std::vector<std::int64_t> type = wire::varints(fields, kTensorDataType);
+  if (type.size() != 1 || (type[0] != kOnnxInt64 && type[0] != kOnnxInt32)) return std::nullopt;
+  const size_t width = type[0] == kOnnxInt64 ? 8 : 4;
+  const std::vector<std::string> raw = wire::strings(fields, kTensorRawData);
+  if (raw.empty()) return wire::varints(fields, type[0] == kOnnxInt64 ? kTensorInt64Data : kTensorInt32Data);
+  if (raw[0].size() % width != 0) return std::nullopt;
+  std::vector<std::int64_t> out;
+  for (size_t at = 0; at < raw[0].size(); at += width) {  // little-endian
+    if (width == 8) {
+      std::int64_t v;
+      std::memcpy(&v, raw[0].data() + at, 8);
+      out.push_back(v);
+    } else {
+      std::int32_t v;
+      std::memcpy(&v, raw[0].data() + at, 4);
+      out.push_back(v);
+    }
+  }
+  return out;
+}
+
+struct Node {
+  size_t field = 0;  // index in the graph's fields
+  std::string op;
+  std::vector<std::string> inputs, outputs;
+  std::vector<std::vector<wire::Field>> attributes;
+
+  const std::vector<wire::Field>* attribute(const std::string& name) const {
+    for (const auto& a : attributes)
+      if (first_string(a, kAttributeName) == name) return &a;
+    return nullptr;
+  }
+};
+
+using Constants = std::map<std::string, std::vector<std::int64_t>>;
+
+const std::vector<std::int64_t>* constant(const Constants& constants, const std::vector<std::string>& inputs,
+                                          size_t k) {
+  if (k >= inputs.size() || inputs[k].empty()) return nullptr;
+  const auto it = constants.find(inputs[k]);
+  return it == constants.end() ? nullptr : &it->second;
+}
+
+// Adds a Slice's row / column phase to `phase` (index 0: axis 2, 1: axis 3). False unless every
+// sliced axis is H or W, with step 2, a start of 0 or 1, to the end, and not sliced before.
+bool add_slice_phase(const Node& slice, const Constants& constants, const std::array<std::int64_t, 2>& extent,
+                     std::array<int, 2>& phase) {
+  const auto* starts = constant(constants, slice.inputs, 1);
+  const auto* ends = constant(constants, slice.inputs, 2);
+  const auto* axes = constant(constants, slice.inputs, 3);
+  const auto* steps = constant(constants, slice.inputs, 4);
+  // Opset < 10 (attributes, no steps) and missing or non-constant parameters do not fold.
+  if (!starts || !ends || !steps || starts->size() != ends->size() || steps->size() != starts->size()) return false;
+  if (slice.inputs.size() > 3 && !slice.inputs[3].empty() && (!axes || axes->size() != starts->size())) return false;
+  for (size_t j = 0; j < starts->size(); ++j) {
+    std::int64_t axis = axes ? (*axes)[j] : static_cast<std::int64_t>(j);
+    if (axis < 0) axis += 4;
+    if (axis != 2 && axis != 3) return false;
+    const size_t a = static_cast<size_t>(axis - 2);
+    if ((*steps)[j] != 2 || ((*starts)[j] != 0 && (*starts)[j] != 1) || (*ends)[j] < extent[a] || phase[a] != -1)
+      return false;
+    phase[a] = static_cast<int>((*starts)[j]);
+  }
+  return true;
+}
+
+std::string tensor_value_info(const std::string& name, std::int64_t elem_type, const std::vector<std::int64_t>& dims) {
+  std::vector<wire::Field> shape;
+  for (std::int64_t d : dims)
+    shape.push_back(wire::bytes_field(kShapeDim, wire::serialize({wire::varint_field(kDimValue, d)})));
+  const std::string tensor_type = wire::serialize(
+      {wire::varint_field(kTensorTypeElemType, elem_type), wire::bytes_field(kTensorTypeShape, wire::serialize(shape))});
+  const std::string type = wire::serialize({wire::bytes_field(kTypeTensorType, tensor_type)});
+  return wire::serialize({wire::bytes_field(kValueInfoName, name), wire::bytes_field(kValueInfoType, type)});
+}
+
+}  // namespace
+
+cv::Mat SpaceToDepth::apply(const cv::Mat& blob) const {
+  if (blob.dims != 4 || blob.type() != CV_32F || blob.size[0] != batch || blob.size[1] != channels ||
+      blob.size[2] != height || blob.size[3] != width)
+    throw std::invalid_argument("SpaceToDepth: expected a float blob of " + std::to_string(batch) + " x " +
+                                std::to_string(channels) + " x " + std::to_string(height) + " x " +
+                                std::to_string(width));
+  const cv::Mat in = blob.isContinuous() ? blob : blob.clone();
+  const int blocks = static_cast<int>(offsets.size());
+  const int oh = height / 2, ow = width / 2;
+  const int dims[4] = {batch, channels * blocks, oh, ow};
+  cv::Mat out(4, dims, CV_32F);
+  const float* src = in.ptr<float>();
+  float* dst = out.ptr<float>();
+  for (int n = 0; n < batch; ++n)
+    for (int k = 0; k < blocks; ++k)
+      for (int c = 0; c < channels; ++c) {
+        const float* plane = src + (static_cast<size_t>(n) * channels + c) * height * width;
+        float* o = dst + ((static_cast<size_t>(n) * blocks + k) * channels + c) * oh * ow;
+        for (int y = 0; y < oh; ++y) {
+          const float* row = plane + static_cast<size_t>(2 * y + offsets[k][0]) * width + offsets[k][1];
+          for (int x = 0; x < ow; ++x) *o++ = row[2 * x];
+        }
+      }
+  return out;
+}
+
+std::optional<FoldedModel> fold_space_to_depth_input(const std::string& onnx) {
+  std::vector<wire::Field> model = wire::parse(onnx);
+  wire::Field* graph_field = nullptr;
+  for (wire::Field& f : model) {
+    if (f.number != kModelGraph || f.type != wire::kLengthDelimited) continue;
+    if (graph_field) return std::nullopt;
+    graph_field = &f;
+  }
+  if (!graph_field) return std::nullopt;
+  std::vector<wire::Field> graph = wire::parse(graph_field->bytes);
+
+  Constants constants;
+  std::set<std::string> initializers;
+  std::vector<Node> nodes;
+  std::set<std::string> graph_outputs;
+  for (size_t i = 0; i < graph.size(); ++i) {
+    const wire::Field& f = graph[i];
+    if (f.type != wire::kLengthDelimited) continue;
+    if (f.number == kGraphInitializer) {
+      const std::string name = first_string(wire::parse(f.bytes), kTensorName);
+      initializers.insert(name);
+      if (auto values = tensor_integers(f.bytes)) constants[name] = std::move(*values);
+    } else if (f.number == kGraphOutput) {
+      graph_outputs.insert(first_string(wire::parse(f.bytes), kValueInfoName));
+    } else if (f.number == kGraphNode) {
+      const std::vector<wire::Field> n = wire::parse(f.bytes);
+      Node node;
+      node.field = i;
+      node.op = first_string(n, kNodeOpType);
+      node.inputs = wire::strings(n, kNodeInput);
+      node.outputs = wire::strings(n, kNodeOutput);
+      for (const std::string& a : wire::strings(n, kNodeAttribute)) node.attributes.push_back(wire::parse(a));
+      if (node.op == "Constant" && node.outputs.size() == 1) {
+        if (const auto* value = node.attribute("value")) {
+          const std::string tensor = first_string(*value, kAttributeTensor);
+          if (auto values = tensor_integers(tensor)) constants[node.outputs[0]] = std::move(*values);
+        }
+      }
+      nodes.push_back(std::move(node));
+    }
+  }
+
+  // The one input that is not a weight, with a fully known N x C x H x W shape, H and W even.
+  size_t input_field = 0;
+  std::string input;
+  int inputs = 0;
+  for (size_t i = 0; i < graph.size(); ++i) {
+    if (graph[i].number != kGraphInput || graph[i].type != wire::kLengthDelimited) continue;
+    const std::string name = first_string(wire::parse(graph[i].bytes), kValueInfoName);
+    if (initializers.count(name)) continue;
+    input_field = i, input = name, ++inputs;
+  }
+  if (inputs != 1) return std::nullopt;
+  const std::vector<wire::Field> tensor_type =
+      wire::parse(first_string(wire::parse(first_string(wire::parse(graph[input_field].bytes), kValueInfoType)),
+                               kTypeTensorType));
+  const std::vector<std::int64_t> elem_type = wire::varints(tensor_type, kTensorTypeElemType);
+  std::vector<std::int64_t> dims;
+  for (const std::string& d : wire::strings(wire::parse(first_string(tensor_type, kTensorTypeShape)), kShapeDim)) {
+    const std::vector<std::int64_t> value = wire::varints(wire::parse(d), kDimValue);
+    if (value.size() != 1 || value[0] <= 0) return std::nullopt;
+    dims.push_back(value[0]);
+  }
+  if (elem_type.size() != 1 || dims.size() != 4 || dims[2] % 2 != 0 || dims[3] % 2 != 0) return std::nullopt;
+
+  std::map<std::string, std::vector<size_t>> consumers;
+  for (size_t k = 0; k < nodes.size(); ++k)
+    for (const std::string& in : nodes[k].inputs) consumers[in].push_back(k);
+
+  // Follow each chain of Slices from the input to the Concat, collecting its phases.
+  std::set<size_t> removed;
+  std::optional<size_t> concat;
+  std::map<std::string, std::array<int, 2>> chain_ends;
+  for (const size_t first : consumers[input]) {
+    std::array<int, 2> phase{-1, -1};
+    std::string tensor = input;
+    size_t k = first;
+    while (nodes[k].op != "Concat") {
+      const Node& n = nodes[k];
+      if (n.op != "Slice" || n.inputs.empty() || n.inputs[0] != tensor || n.outputs.size() != 1) return std::nullopt;
+      if (!add_slice_phase(n, constants, {dims[2], dims[3]}, phase) || !removed.insert(k).second) return std::nullopt;
+      tensor = n.outputs[0];
+      const std::vector<size_t>& next = consumers[tensor];
+      if (graph_outputs.count(tensor) || next.size() != 1) return std::nullopt;
+      k = next.front();
+    }
+    if (phase[0] < 0 || phase[1] < 0 || (concat && *concat != k) || tensor == input ||
+        !chain_ends.emplace(tensor, phase).second)
+      return std::nullopt;
+    concat = k;
+  }
+  if (!concat) return std::nullopt;
+  const Node& cat = nodes[*concat];
+  const auto* axis = cat.attribute("axis");
+  const std::vector<std::int64_t> axis_value = axis ? wire::varints(*axis, kAttributeInt) : std::vector<std::int64_t>{};
+  if (axis_value.size() != 1 || (axis_value[0] != 1 && axis_value[0] != -3) || cat.outputs.size() != 1 ||
+      cat.inputs.size() != 4 || chain_ends.size() != 4 || graph_outputs.count(cat.outputs[0]))
+    return std::nullopt;
+  SpaceToDepth s2d;
+  s2d.batch = static_cast<int>(dims[0]);
+  s2d.channels = static_cast<int>(dims[1]);
+  s2d.height = static_cast<int>(dims[2]);
+  s2d.width = static_cast<int>(dims[3]);
+  std::set<std::array<int, 2>> phases;
+  for (const std::string& in : cat.inputs) {
+    const auto it = chain_ends.find(in);
+    if (it == chain_ends.end() || !phases.insert(it->second).second) return std::nullopt;
+    s2d.offsets.push_back(it->second);
+  }
+  removed.insert(*concat);
+
+  // Rewrite: drop the Slices and the Concat (and value_info naming their outputs); the Concat's
+  // output becomes the graph input (its value_info is that input now).
+  std::set<size_t> dropped_fields;
+  std::set<std::string> dropped_tensors;
+  for (size_t k : removed) {
+    dropped_fields.insert(nodes[k].field);
+    dropped_tensors.insert(nodes[k].outputs.begin(), nodes[k].outputs.end());
+  }
+  std::vector<wire::Field> rewritten;
+  for (size_t i = 0; i < graph.size(); ++i) {
+    if (dropped_fields.count(i)) continue;
+    if (graph[i].number == kGraphValueInfo && graph[i].type == wire::kLengthDelimited &&
+        dropped_tensors.count(first_string(wire::parse(graph[i].bytes), kValueInfoName)))
+      continue;
+    if (i == input_field) {
+      rewritten.push_back(wire::bytes_field(
+          kGraphInput, tensor_value_info(cat.outputs[0], elem_type[0], {dims[0], 4 * dims[1], dims[2] / 2, dims[3] / 2})));
+      continue;
+    }
+    rewritten.push_back(std::move(graph[i]));
+  }
+  graph_field->bytes = wire::serialize(rewritten);
+  return FoldedModel{wire::serialize(model), std::move(s2d)};
+}
+
+}  // namespace wardmap::semantics

@@ -1,0 +1,171 @@
+// The protobuf wire reader/writer and the folding of a strided-slice input stage (onnx_fold.h): on a
+// small Focus model built here, and on the shipped YOLOX-nano when ../shared/models has it. The
+// folded network must give exactly the output of the original on the same image.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <iterator>
+#include <opencv2/dnn.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "semantics/detection/letterbox.h"
+#include "semantics/detection/model_description.h"
+#include "semantics/detection/model_search.h"
+#include "semantics/detection/onnx_fold.h"
+#include "semantics/detection/onnx_net.h"
+#include "semantics/detection/protobuf_wire.h"
+#include "tests/semantics/detection/detection_test_support.h"
+
+namespace wardmap::semantics {
+namespace {
+
+using wire::bytes_field;
+using wire::serialize;
+using wire::varint_field;
+
+// --- a tiny ONNX builder (onnx.proto field numbers) ---
+std::string int64_tensor(const std::string& name, const std::vector<std::int64_t>& values) {
+  std::string packed;
+  for (std::int64_t v : values) packed += serialize({varint_field(1, static_cast<std::uint64_t>(v))}).substr(1);
+  return serialize({varint_field(1, values.size()), varint_field(2, 7), bytes_field(7, packed), bytes_field(8, name)});
+}
+std::string node(const std::string& op, const std::vector<std::string>& in, const std::vector<std::string>& out,
+                 const std::vector<std::string>& attributes = {}) {
+  std::vector<wire::Field> f;
+  for (const auto& s : in) f.push_back(bytes_field(1, s));
+  for (const auto& s : out) f.push_back(bytes_field(2, s));
+  f.push_back(bytes_field(4, op));
+  for (const auto& a : attributes) f.push_back(bytes_field(5, a));
+  return serialize(f);
+}
+std::string int_attribute(const std::string& name, std::int64_t v) {
+  return serialize({bytes_field(1, name), varint_field(3, static_cast<std::uint64_t>(v)), varint_field(20, 2)});
+}
+std::string float_value(const std::string& name, const std::vector<int>& dims) {
+  std::vector<wire::Field> shape;
+  for (int d : dims) shape.push_back(bytes_field(1, serialize({varint_field(1, d)})));
+  const std::string tensor = serialize({varint_field(1, 1), bytes_field(2, serialize(shape))});
+  return serialize({bytes_field(1, name), bytes_field(2, serialize({bytes_field(1, tensor)}))});
+}
+
+struct FocusSpec {
+  int step = 2;
+  bool slice_output_is_graph_output = false;
+  int chains = 4;
+};
+
+// x (1x3x4x6) -> YOLOX's Focus (H then W slices; concat top-left, bottom-left, top-right,
+// bottom-right) -> Relu -> y.
+std::string focus_model(const FocusSpec& spec = {}) {
+  std::vector<wire::Field> g;
+  const std::int64_t big = 9223372036854775807LL;
+  for (const auto& [name, v] : std::vector<std::pair<std::string, std::int64_t>>{
+           {"zero", 0}, {"one", 1}, {"end", big}, {"h", 2}, {"w", 3}, {"step", spec.step}})
+    g.push_back(bytes_field(5, int64_tensor(name, {v})));
+  const std::vector<std::pair<std::string, std::string>> phases = {{"zero", "zero"}, {"one", "zero"}, {"zero", "one"}, {"one", "one"}};
+  std::vector<std::string> ends;
+  for (int k = 0; k < spec.chains; ++k) {
+    const std::string a = "rows" + std::to_string(k), b = "phase" + std::to_string(k);
+    g.push_back(bytes_field(1, node("Slice", {"x", phases[k].first, "end", "h", "step"}, {a})));
+    g.push_back(bytes_field(1, node("Slice", {a, phases[k].second, "end", "w", "step"}, {b})));
+    ends.push_back(b);
+  }
+  g.push_back(bytes_field(1, node("Concat", ends, {"focus"}, {int_attribute("axis", 1)})));
+  g.push_back(bytes_field(1, node("Relu", {"focus"}, {"y"})));
+  g.push_back(bytes_field(2, "focus_test"));
+  g.push_back(bytes_field(11, float_value("x", {1, 3, 4, 6})));
+  g.push_back(bytes_field(12, float_value("y", {1, 3 * spec.chains, 2, 3})));
+  if (spec.slice_output_is_graph_output) g.push_back(bytes_field(12, float_value("rows0", {1, 3, 2, 6})));
+  const std::string opset = serialize({bytes_field(1, ""), varint_field(2, 11)});
+  return serialize({varint_field(1, 7), bytes_field(2, "wardmap-test"), bytes_field(7, serialize(g)), bytes_field(8, opset)});
+}
+
+cv::Mat forward(const std::string& onnx, const cv::Mat& blob) {
+  cv::dnn::Net net = cv::dnn::readNetFromONNX(onnx.data(), onnx.size());
+  net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
+  net.setInput(blob);
+  return net.forward().clone();
+}
+
+TEST(ProtobufWire, ParsesWhatItWritesAndRejectsTruncatedMessages) {
+  const std::vector<wire::Field> fields = {varint_field(1, 300), bytes_field(2, "abc"), varint_field(3, ~0ULL),
+                                           bytes_field(15, std::string(200, 'x'))};
+  const std::string bytes = serialize(fields);
+  const std::vector<wire::Field> back = wire::parse(bytes);
+  ASSERT_EQ(back.size(), 4u);
+  EXPECT_EQ(back[0].varint, 300u);
+  EXPECT_EQ(back[1].bytes, "abc");
+  EXPECT_EQ(static_cast<std::int64_t>(back[2].varint), -1);
+  EXPECT_EQ(back[3].number, 15u);
+  EXPECT_EQ(serialize(back), bytes);
+  EXPECT_THROW(wire::parse(bytes.substr(0, bytes.size() - 1)), std::runtime_error);
+  EXPECT_THROW(wire::parse(std::string("\x0b", 1)), std::runtime_error);  // group start
+  // Packed and unpacked repeated varints read the same.
+  const std::string packed = serialize({varint_field(1, 5)}).substr(1) + serialize({varint_field(1, 7)}).substr(1);
+  EXPECT_EQ(wire::varints({bytes_field(4, packed)}, 4), (std::vector<std::int64_t>{5, 7}));
+  EXPECT_EQ(wire::varints({varint_field(4, 5), varint_field(4, 7)}, 4), (std::vector<std::int64_t>{5, 7}));
+}
+
+TEST(OnnxFold, FocusStageIsFoldedAndTheOutputIsUnchanged) {
+  const std::string onnx = focus_model();
+  const auto folded = fold_space_to_depth_input(onnx);
+  ASSERT_TRUE(folded.has_value());
+  EXPECT_EQ(folded->input.channels, 3);
+  EXPECT_EQ(folded->input.height, 4);
+  EXPECT_EQ(folded->input.width, 6);
+  const std::vector<std::array<int, 2>> expected = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+  EXPECT_EQ(folded->input.offsets, expected);
+
+  const int dims[4] = {1, 3, 4, 6};
+  cv::Mat blob(4, dims, CV_32F);
+  cv::randu(blob, 0.0, 255.0);
+  const cv::Mat reference = forward(onnx, blob);
+  const cv::Mat rearranged = folded->input.apply(blob);
+  ASSERT_EQ(rearranged.size[1], 12);
+  const cv::Mat out = forward(folded->onnx, rearranged);
+  ASSERT_EQ(out.total(), reference.total());
+  EXPECT_EQ(cv::norm(out.reshape(1, 1), reference.reshape(1, 1), cv::NORM_INF), 0.0);
+  // A hand check: channel 3 (bottom-left block, channel 0) at (0, 1) is x[0][1][2].
+  EXPECT_EQ(rearranged.ptr<float>()[3 * 2 * 3 + 1], blob.ptr<float>()[1 * 6 + 2]);
+
+  const int wrong[4] = {1, 3, 4, 8};
+  EXPECT_THROW(folded->input.apply(cv::Mat(4, wrong, CV_32F)), std::invalid_argument);
+}
+
+TEST(OnnxFold, OtherGraphsAreLeftAlone) {
+  FocusSpec step1;
+  step1.step = 1;
+  EXPECT_FALSE(fold_space_to_depth_input(focus_model(step1)).has_value());
+  FocusSpec exposed;
+  exposed.slice_output_is_graph_output = true;
+  EXPECT_FALSE(fold_space_to_depth_input(focus_model(exposed)).has_value());
+  FocusSpec three;
+  three.chains = 3;
+  EXPECT_FALSE(fold_space_to_depth_input(focus_model(three)).has_value());
+  EXPECT_THROW(fold_space_to_depth_input("\x0a\x05" "ab"), std::runtime_error);  // truncated
+}
+
+TEST(OnnxFold, YoloxNanoFoldedGivesTheSameOutput) {
+  WARDMAP_REQUIRE_MODEL("yolox-nano/yolox_nano_416x416.onnx");
+  WARDMAP_REQUIRE_DATA("images");
+  const auto file = wardmap::test::shared_models_dir() / "yolox-nano/yolox_nano_416x416.onnx";
+  std::optional<SpaceToDepth> fold;
+  cv::dnn::Net folded = load_onnx_net(file, "missing", fold);
+  ASSERT_TRUE(fold.has_value()) << "YOLOX-nano's Focus stage was not recognised";
+  const std::vector<std::array<int, 2>> yolox_order = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+  EXPECT_EQ(fold->offsets, yolox_order);
+  cv::dnn::Net original = load_onnx_net(file, "missing");
+
+  const ModelDescription model = load_model_description(model_descriptions_dir() / "yolox-nano.yaml");
+  const cv::Mat image = cv::imread((wardmap::test::shared_data_dir() / "images" / "bus.jpg").string());
+  ASSERT_FALSE(image.empty());
+  const Letterbox lb = make_letterbox(image, model.input);
+  original.setInput(lb.blob);
+  folded.setInput(fold->apply(lb.blob));
+  const cv::Mat a = original.forward().clone(), b = folded.forward().clone();
+  ASSERT_EQ(a.total(), b.total());
+  EXPECT_LE(cv::norm(a.reshape(1, 1), b.reshape(1, 1), cv::NORM_INF), 1e-4);
+}
+
+}  // namespace
+}  // namespace wardmap::semantics
