@@ -6,6 +6,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "slam/core/camera.h"
@@ -86,7 +87,7 @@ class FrontProcess {
 
   std::vector<Record> records_;
   std::uint64_t next_frame_id_ = 0;
-  int frames_since_keyframe_ = 0;
+  std::optional<double> last_keyframe_time_;  // timestamp of the last keyframe made
   SE3 last_tracked_pose_cw_;
 };
 
