@@ -89,12 +89,12 @@ struct MappingOptions {
   double redundant_ratio = 0.9;      // mapping.redundant_ratio: keyframe culling
   int redundant_observers = 3;       // mapping.redundant_observers
   bool keyframe_culling = true;      // mapping.keyframe_culling
-  // The time a real-time mapper is given per keyframe, in the sequence's time (frame timestamps),
-  // so that a run behaves as at the camera's rate however fast the input arrives: the mapper counts
-  // as busy for this long after each keyframe (no keyframe is made), and a threaded tracker then
-  // waits for it if it is still mapping (offline input arrives faster than a camera's; the map must
-  // keep up). 2 frames at 30 Hz, none at KITTI's 10 Hz.
-  double busy_seconds = 0.08;              // mapping.busy_seconds
+  // With the mapper on the tracking thread it is always idle when the tracker asks; it then counts
+  // as busy for this many frames after each keyframe, as a mapper thread would be.
+  int inline_busy_frames = 2;              // mapping.inline_busy_frames
+  // Threaded: the tracker waits for the mapper when a keyframe is still being mapped this many frames
+  // after it was made (offline input arrives faster than a camera's; the map must keep up).
+  int max_lag_frames = 3;                  // mapping.max_lag_frames
   int triangulation_neighbours_mono = 20;  // mapping.triangulation_neighbours_mono
   int recent_min_observations_mono = 2;    // mapping.recent_min_observations_mono
   double min_baseline_depth_ratio = 0.01;  // mapping.min_baseline_depth_ratio: monocular triangulation

@@ -44,11 +44,8 @@ FrameResult FrontProcess::process(const io::Frame& in) {
                                   options_.tracking.max_depth, options_.tracking.max_depth_step));
   const auto extracted = std::chrono::steady_clock::now();
   const bool threaded = mapper_.threaded();
-  // Threaded: a mapper still busy after its time (mapping.busy_seconds) is waited for, as a
-  // real-time one would have finished; the keyframe decisions are then those of an inline mapper.
-  if (threaded && last_keyframe_time_ && in.timestamp - *last_keyframe_time_ > options_.mapping.busy_seconds &&
-      !mapper_.idle())
-    mapper_.wait_idle();
+  if (threaded && frames_since_keyframe_ >= options_.mapping.max_lag_frames && !mapper_.idle()) mapper_.wait_idle();
+  ++frames_since_keyframe_;
   FrameResult r;
   bool start_submap = false;
   {
@@ -66,7 +63,7 @@ FrameResult FrontProcess::process(const io::Frame& in) {
     r.tracked = t.tracked;
     r.keyframe = t.keyframe;
     r.relocalised = t.relocalised;
-    if (t.keyframe) last_keyframe_time_ = in.timestamp;
+    if (t.keyframe) frames_since_keyframe_ = 0;
     r.features = static_cast<int>(frame.size());
     r.matches = t.matches;
     r.inliers = t.inliers;

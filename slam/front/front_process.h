@@ -6,7 +6,6 @@
 #pragma once
 
 #include <memory>
-#include <optional>
 #include <vector>
 
 #include "slam/core/camera.h"
@@ -87,7 +86,7 @@ class FrontProcess {
 
   std::vector<Record> records_;
   std::uint64_t next_frame_id_ = 0;
-  std::optional<double> last_keyframe_time_;  // timestamp of the last keyframe made
+  int frames_since_keyframe_ = 0;
   SE3 last_tracked_pose_cw_;
 };
 

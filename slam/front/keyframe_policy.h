@@ -9,7 +9,6 @@ namespace wardmap::slam {
 
 struct KeyFrameEvidence {
   int frames_since_keyframe = 0;
-  double seconds_since_keyframe = 0;  // sequence time (frame timestamps)
   int tracked_inliers = 0;   // frame's matched inliers after local-map tracking
   int reference_points = 0;  // reference keyframe's points with enough observations
   int keyframes_in_map = 0;

@@ -245,7 +245,6 @@ bool Tracker::create_initial_map(Frame& first, Frame& second, const std::vector<
   add_to_place_database(kf2);
   reference_ = last_keyframe_ = kf2;
   last_keyframe_frame_ = second.id();
-  last_keyframe_time_ = second.timestamp();
   second.reference_keyframe = kf2;
   mapper_.enqueue(kf1);
   mapper_.enqueue(kf2);
@@ -264,7 +263,6 @@ bool Tracker::initialise_rgbd(Frame& frame) {
   add_to_place_database(kf);
   reference_ = last_keyframe_ = kf;
   last_keyframe_frame_ = frame.id();
-  last_keyframe_time_ = frame.timestamp();
   frame.reference_keyframe = kf;
   mapper_.enqueue(kf);
   mapper_.process_queued();
@@ -346,7 +344,6 @@ bool Tracker::track_local_map(Frame& frame, int& inliers) {
 KeyFrameEvidence Tracker::evidence(const Frame& frame, int inliers) const {
   KeyFrameEvidence e;
   e.frames_since_keyframe = static_cast<int>(frame.id() - last_keyframe_frame_);
-  e.seconds_since_keyframe = frame.timestamp() - last_keyframe_time_;
   e.tracked_inliers = inliers;
   e.keyframes_in_map = static_cast<int>(submap_->num_keyframes());
   const int min_obs = e.keyframes_in_map <= 2 ? 2 : 3;
@@ -359,7 +356,8 @@ KeyFrameEvidence Tracker::evidence(const Frame& frame, int inliers) const {
     else
       ++e.untracked_close;
   }
-  e.mapper_idle = mapper_.idle() && e.seconds_since_keyframe > options_.mapping.busy_seconds;
+  e.mapper_idle = mapper_.idle() &&
+                  (mapper_.threaded() || e.frames_since_keyframe > options_.mapping.inline_busy_frames);
   e.mapper_queue_full = mapper_.queue_full();
   return e;
 }
@@ -375,7 +373,6 @@ void Tracker::insert_keyframe(Frame& frame) {
   add_to_place_database(kf);
   reference_ = last_keyframe_ = kf;
   last_keyframe_frame_ = frame.id();
-  last_keyframe_time_ = frame.timestamp();
   frame.reference_keyframe = kf;
   if (!mapper_.enqueue(kf)) return;  // mapper saturated: the keyframe still serves as reference
   mapper_.process_queued();          // inline mapping in this milestone
