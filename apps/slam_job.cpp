@@ -83,8 +83,9 @@ double run_slam_job(const SlamJob& job) {
                  "no relocalisation, a lost track starts a new submap");
   else
     front.set_vocabulary(std::make_shared<const slam::place::Vocabulary>(slam::place::Vocabulary::load(vocabulary_file)));
-  std::string frames_csv = "timestamp,status,submap\n", timing_csv = "timestamp,seconds,extract_seconds,mapping_seconds\n";
+  std::string frames_csv = "timestamp,status,submap\n", timing_csv = "timestamp,seconds,extract_seconds,mapping_seconds,wait_seconds\n";
   std::vector<double> seconds, stamps;
+  double wait_seconds = 0;  // the tracker waiting for a threaded mapper behind its time
   std::vector<std::string> statuses;
   std::vector<int> submap_of;
   char line[160];
@@ -120,9 +121,11 @@ double run_slam_job(const SlamJob& job) {
           submap_of[k] = r.submap;
           break;
         }
-    std::snprintf(line, sizeof line, "%.6f,%.6f,%.6f,%.6f\n", r.timestamp, r.seconds, r.extract_seconds, r.mapping_seconds);
+    std::snprintf(line, sizeof line, "%.6f,%.6f,%.6f,%.6f,%.6f\n", r.timestamp, r.seconds, r.extract_seconds,
+                  r.mapping_seconds, r.wait_seconds);
     timing_csv += line;
     seconds.push_back(r.seconds);
+    wait_seconds += r.wait_seconds;
   }
   front.finish();
   progress.finish();
@@ -137,7 +140,9 @@ double run_slam_job(const SlamJob& job) {
                  {"tracking_ms", {{"median", 1e3 * percentile(seconds, 0.5)}, {"p95", 1e3 * percentile(seconds, 0.95)},
                                   {"max", 1e3 * percentile(seconds, 1.0)}}},
                  // keyframes the threaded mapper registered without fusion, BA and culling (it was behind)
-                 {"mapper_deferred_keyframes", front.mapper_stats().deferred}};
+                 {"mapper_deferred_keyframes", front.mapper_stats().deferred},
+                 // the tracker waiting for a threaded mapper still busy mapping.max_lag_frames after a keyframe
+                 {"mapper_wait_seconds", wait_seconds}};
   {
     // What local mapping did, over the run (all submaps).
     const auto& m = front.mapper_stats();
@@ -155,6 +160,8 @@ double run_slam_job(const SlamJob& job) {
   md += buf;
   md += "- keyframes mapped without fusion, BA and culling (threaded mapper behind): " +
         std::to_string(front.mapper_stats().deferred) + "\n";
+  std::snprintf(buf, sizeof buf, "- tracker waiting for the mapper (threaded, behind its time): %.1f s\n", wait_seconds);
+  md += buf;
   if (info.has_ground_truth && traj.size() >= 3) {
     const auto& gt = reader->ground_truth();
     const auto pairs = slam::eval::associate(gt, traj, {});

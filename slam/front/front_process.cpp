@@ -44,7 +44,12 @@ FrameResult FrontProcess::process(const io::Frame& in) {
                                   options_.tracking.max_depth, options_.tracking.max_depth_step));
   const auto extracted = std::chrono::steady_clock::now();
   const bool threaded = mapper_.threaded();
-  if (threaded && frames_since_keyframe_ >= options_.mapping.max_lag_frames && !mapper_.idle()) mapper_.wait_idle();
+  double wait_seconds = 0;
+  if (threaded && frames_since_keyframe_ >= options_.mapping.max_lag_frames && !mapper_.idle()) {
+    const auto wait_start = std::chrono::steady_clock::now();
+    mapper_.wait_idle();
+    wait_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wait_start).count();
+  }
   ++frames_since_keyframe_;
   FrameResult r;
   bool start_submap = false;
@@ -85,14 +90,17 @@ FrameResult FrontProcess::process(const io::Frame& in) {
     }
   }
   if (start_submap) {
+    const auto wait_start = std::chrono::steady_clock::now();
     mapper_.wait_idle();  // the mapper finishes the old submap's keyframes first
+    wait_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - wait_start).count();
     submap_ = std::make_shared<Submap>(static_cast<int>(submaps_.size()), ids_);
     submaps_.push_back(submap_);
     mapper_.set_submap(submap_);
     tracker_.set_submap(submap_, last_tracked_pose_cw_);
     r.new_submap = true;
   }
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.wait_seconds = wait_seconds;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - wait_seconds;
   return r;
 }
 

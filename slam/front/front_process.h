@@ -35,6 +35,10 @@ struct FrameResult {
   // Monocular initialisation: timestamps of the earlier frames localised once the map existed.
   std::vector<double> backfilled;
   double seconds = 0;          // wall time spent on this frame (extraction, tracking, inline mapping)
+  // Not in `seconds`: time waiting for a threaded mapper still busy mapping.max_lag_frames after a
+  // keyframe (or finishing the old submap's keyframes when a new one starts). A camera delivering
+  // frames in real time would not wait when the mapper keeps up with it.
+  double wait_seconds = 0;
   double extract_seconds = 0;  // of which ORB extraction
   double mapping_seconds = 0;  // of which local mapping run inline (keyframes only; 0 when threaded)
 };
