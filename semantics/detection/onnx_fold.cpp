@@ -103,8 +103,8 @@ std::string tensor_value_info(const std::string& name, std::int64_t elem_type, c
   std::vector<wire::Field> shape;
   for (std::int64_t d : dims)
     shape.push_back(wire::bytes_field(kShapeDim, wire::serialize({wire::varint_field(kDimValue, d)})));
-  const std::string tensor_type = wire::serialize(
-      {wire::varint_field(kTensorTypeElemType, elem_type), wire::bytes_field(kTensorTypeShape, wire::serialize(shape))});
+  const std::string tensor_type = wire::serialize({wire::varint_field(kTensorTypeElemType, elem_type),
+                                                   wire::bytes_field(kTensorTypeShape, wire::serialize(shape))});
   const std::string type = wire::serialize({wire::bytes_field(kTypeTensorType, tensor_type)});
   return wire::serialize({wire::bytes_field(kValueInfoName, name), wire::bytes_field(kValueInfoType, type)});
 }
@@ -190,9 +190,8 @@ std::optional<FoldedModel> fold_space_to_depth_input(const std::string& onnx) {
     input_field = i, input = name, ++inputs;
   }
   if (inputs != 1) return std::nullopt;
-  const std::vector<wire::Field> tensor_type =
-      wire::parse(first_string(wire::parse(first_string(wire::parse(graph[input_field].bytes), kValueInfoType)),
-                               kTypeTensorType));
+  const std::vector<wire::Field> tensor_type = wire::parse(
+      first_string(wire::parse(first_string(wire::parse(graph[input_field].bytes), kValueInfoType)), kTypeTensorType));
   const std::vector<std::int64_t> elem_type = wire::varints(tensor_type, kTensorTypeElemType);
   std::vector<std::int64_t> dims;
   for (const std::string& d : wire::strings(wire::parse(first_string(tensor_type, kTensorTypeShape)), kShapeDim)) {
@@ -264,7 +263,8 @@ std::optional<FoldedModel> fold_space_to_depth_input(const std::string& onnx) {
       continue;
     if (i == input_field) {
       rewritten.push_back(wire::bytes_field(
-          kGraphInput, tensor_value_info(cat.outputs[0], elem_type[0], {dims[0], 4 * dims[1], dims[2] / 2, dims[3] / 2})));
+          kGraphInput,
+          tensor_value_info(cat.outputs[0], elem_type[0], {dims[0], 4 * dims[1], dims[2] / 2, dims[3] / 2})));
       continue;
     }
     rewritten.push_back(std::move(graph[i]));

@@ -6,11 +6,10 @@
 #pragma once
 
 #include <array>
+#include <opencv2/core.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <opencv2/core.hpp>
 
 namespace wardmap::semantics {
 
@@ -26,7 +25,7 @@ struct SpaceToDepth {
 };
 
 struct FoldedModel {
-  std::string onnx;     // the rewritten ModelProto, for cv::dnn::readNetFromONNX(buffer)
+  std::string onnx;    // the rewritten ModelProto, for cv::dnn::readNetFromONNX(buffer)
   SpaceToDepth input;  // what to do to the original input before setInput
 };
 

@@ -36,20 +36,21 @@ double FrontProcess::mapping_seconds_total() const {
 
 FrameResult FrontProcess::process(const io::Frame& in) {
   const auto start = std::chrono::steady_clock::now();
-  Frame frame(next_frame_id_++, in.timestamp,
-              make_frame_features(in.image, options_.monocular ? cv::Mat() : in.depth,
-                                  options_.monocular && tracker_.state() == TrackingState::kNotInitialised
-                                      ? init_extractor_
-                                      : extractor_, camera_, options_.tracking.virtual_baseline,
-                                  options_.tracking.max_depth, options_.tracking.max_depth_step));
+  Frame frame(
+      next_frame_id_++, in.timestamp,
+      make_frame_features(
+          in.image, options_.monocular ? cv::Mat() : in.depth,
+          options_.monocular && tracker_.state() == TrackingState::kNotInitialised ? init_extractor_ : extractor_,
+          camera_, options_.tracking.virtual_baseline, options_.tracking.max_depth, options_.tracking.max_depth_step));
   const auto extracted = std::chrono::steady_clock::now();
   const bool threaded = mapper_.threaded();
-  double wait_seconds = 0;
-  if (threaded && frames_since_keyframe_ >= options_.mapping.max_lag_frames && !mapper_.idle()) {
+  double wait_seconds = 0;  // reported apart from the frame's own time (FrameResult::wait_seconds)
+  const auto wait_for_mapper = [this, &wait_seconds] {
     const auto wait_start = std::chrono::steady_clock::now();
     mapper_.wait_idle();
-    wait_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wait_start).count();
-  }
+    wait_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - wait_start).count();
+  };
+  if (threaded && frames_since_keyframe_ >= options_.mapping.max_lag_frames && !mapper_.idle()) wait_for_mapper();
   ++frames_since_keyframe_;
   FrameResult r;
   bool start_submap = false;
@@ -90,9 +91,7 @@ FrameResult FrontProcess::process(const io::Frame& in) {
     }
   }
   if (start_submap) {
-    const auto wait_start = std::chrono::steady_clock::now();
-    mapper_.wait_idle();  // the mapper finishes the old submap's keyframes first
-    wait_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - wait_start).count();
+    wait_for_mapper();  // the mapper finishes the old submap's keyframes first
     submap_ = std::make_shared<Submap>(static_cast<int>(submaps_.size()), ids_);
     submaps_.push_back(submap_);
     mapper_.set_submap(submap_);

@@ -1,6 +1,8 @@
 // The protobuf wire reader/writer and the folding of a strided-slice input stage (onnx_fold.h): on a
 // small Focus model built here, and on the shipped YOLOX-nano when ../shared/models has it. The
 // folded network must give exactly the output of the original on the same image.
+#include "semantics/detection/onnx_fold.h"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -11,7 +13,6 @@
 #include "semantics/detection/letterbox.h"
 #include "semantics/detection/model_description.h"
 #include "semantics/detection/model_search.h"
-#include "semantics/detection/onnx_fold.h"
 #include "semantics/detection/onnx_net.h"
 #include "semantics/detection/protobuf_wire.h"
 #include "tests/semantics/detection/detection_test_support.h"
@@ -62,7 +63,8 @@ std::string focus_model(const FocusSpec& spec = {}) {
   for (const auto& [name, v] : std::vector<std::pair<std::string, std::int64_t>>{
            {"zero", 0}, {"one", 1}, {"end", big}, {"h", 2}, {"w", 3}, {"step", spec.step}})
     g.push_back(bytes_field(5, int64_tensor(name, {v})));
-  const std::vector<std::pair<std::string, std::string>> phases = {{"zero", "zero"}, {"one", "zero"}, {"zero", "one"}, {"one", "one"}};
+  const std::vector<std::pair<std::string, std::string>> phases = {
+      {"zero", "zero"}, {"one", "zero"}, {"zero", "one"}, {"one", "one"}};
   std::vector<std::string> ends;
   for (int k = 0; k < spec.chains; ++k) {
     const std::string a = "rows" + std::to_string(k), b = "phase" + std::to_string(k);
@@ -77,7 +79,8 @@ std::string focus_model(const FocusSpec& spec = {}) {
   g.push_back(bytes_field(12, float_value("y", {1, 3 * spec.chains, 2, 3})));
   if (spec.slice_output_is_graph_output) g.push_back(bytes_field(12, float_value("rows0", {1, 3, 2, 6})));
   const std::string opset = serialize({bytes_field(1, ""), varint_field(2, 11)});
-  return serialize({varint_field(1, 7), bytes_field(2, "wardmap-test"), bytes_field(7, serialize(g)), bytes_field(8, opset)});
+  return serialize(
+      {varint_field(1, 7), bytes_field(2, "wardmap-test"), bytes_field(7, serialize(g)), bytes_field(8, opset)});
 }
 
 cv::Mat forward(const std::string& onnx, const cv::Mat& blob) {
@@ -142,7 +145,9 @@ TEST(OnnxFold, OtherGraphsAreLeftAlone) {
   FocusSpec three;
   three.chains = 3;
   EXPECT_FALSE(fold_space_to_depth_input(focus_model(three)).has_value());
-  EXPECT_THROW(fold_space_to_depth_input("\x0a\x05" "ab"), std::runtime_error);  // truncated
+  EXPECT_THROW(fold_space_to_depth_input("\x0a\x05"
+                                         "ab"),
+               std::runtime_error);  // truncated
 }
 
 TEST(OnnxFold, YoloxNanoFoldedGivesTheSameOutput) {
