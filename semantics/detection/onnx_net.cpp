@@ -19,6 +19,15 @@ cv::dnn::Net on_cpu(cv::dnn::Net net, const std::filesystem::path& file) {
   return net;
 }
 
+// cv::dnn's ONNX reader on the model's bytes, already read; OpenCV's errors name the file.
+cv::dnn::Net net_from_bytes(const std::string& bytes, const std::filesystem::path& file) {
+  try {
+    return on_cpu(cv::dnn::readNetFromONNX(bytes.data(), bytes.size()), file);
+  } catch (const cv::Exception& ex) {
+    throw InputError(file.string(), "cannot load the ONNX model: " + ex.msg);
+  }
+}
+
 }  // namespace
 
 cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint) {
@@ -43,7 +52,7 @@ cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string&
   } catch (const std::runtime_error& ex) {
     throw InputError(file.string(), std::string("not an ONNX model: ") + ex.what());
   }
-  if (!rewritten) return load_onnx_net(file, missing_hint);
+  if (!rewritten) return net_from_bytes(bytes, file);
   try {
     cv::dnn::Net net = on_cpu(cv::dnn::readNetFromONNX(rewritten->onnx.data(), rewritten->onnx.size()), file);
     folded = std::move(rewritten->input);
@@ -51,7 +60,7 @@ cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string&
   } catch (const cv::Exception& ex) {  // our rewrite's fault, not the user's: use the model as it is
     spdlog::warn("{}: the model with its input stage folded does not load ({}); using it unchanged", file.string(),
                  ex.msg);
-    return load_onnx_net(file, missing_hint);
+    return net_from_bytes(bytes, file);
   }
 }
 
