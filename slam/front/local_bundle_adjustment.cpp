@@ -187,7 +187,7 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
     mp->set_position(Eigen::Vector3d(x[0], x[1], x[2]));
     mp->update_normal_and_depth();
   }
-  submap.purge_bad_points();
+  submap.purge_bad_points(points);  // outlier observations may have left a point with none
   result.keyframes = static_cast<int>(local.size());
   result.fixed_keyframes = static_cast<int>(fixed.size());
   result.points = static_cast<int>(position_blocks.size());

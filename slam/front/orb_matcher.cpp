@@ -268,6 +268,7 @@ int OrbMatcher::fuse(const std::shared_ptr<KeyFrame>& kf, const std::vector<std:
   const SE3& T_cw = kf->pose_cw();
   const Eigen::Vector3d centre = kf->camera_center();
   int fused = 0;
+  std::vector<std::shared_ptr<MapPoint>> replaced;
   for (const auto& mp : points) {
     if (!mp || mp->bad() || mp->observed_by(kf->id())) continue;
     const Eigen::Vector3d pc = T_cw * mp->position();
@@ -301,17 +302,20 @@ int OrbMatcher::fuse(const std::shared_ptr<KeyFrame>& kf, const std::vector<std:
     const auto& existing = kf->map_point(j);
     if (existing && !existing->bad()) {
       if (existing == mp) continue;
-      if (existing->num_observations() > mp->num_observations())
+      if (existing->num_observations() > mp->num_observations()) {
         mp->replace_with(existing);
-      else
+      } else {
         existing->replace_with(mp);
+        replaced.push_back(existing);
+      }
     } else {
       mp->add_observation(kf, static_cast<int>(j));
       kf->set_map_point(j, mp);
     }
     ++fused;
   }
-  submap.purge_bad_points();
+  submap.purge_bad_points(points);
+  submap.purge_bad_points(replaced);
   return fused;
 }
 

@@ -30,8 +30,10 @@ void Submap::erase_keyframe(const std::shared_ptr<KeyFrame>& kf) {
     auto cov = kf->best_covisibles(1);
     parent = cov.empty() ? origin_ : cov.front();
   }
+  const std::vector<std::shared_ptr<MapPoint>> seen = kf->map_points();
   kf->set_bad(parent);
   keyframes_.erase(kf->id());
+  purge_bad_points(seen);  // the points this keyframe was the last to observe
 }
 
 void Submap::clear() {
@@ -50,6 +52,16 @@ void Submap::purge_bad_points() {
       ++it;
     }
   }
+}
+
+void Submap::purge_bad_points(const std::vector<std::shared_ptr<MapPoint>>& candidates) {
+  for (const auto& mp : candidates)
+    if (mp && mp->bad()) {
+      const auto it = map_points_.find(mp->id());
+      if (it == map_points_.end() || it->second != mp) continue;
+      mp->set_bad();
+      map_points_.erase(it);
+    }
 }
 
 std::vector<std::shared_ptr<KeyFrame>> Submap::recent_keyframes(size_t n) const {
