@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <memory>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -96,27 +97,25 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
   const PinholeIntrinsics K{camera.fx, camera.fy, camera.cx, camera.cy, keyframe->features().bf};
   std::vector<char> inlier(observations.size(), 1);
 
+  // One cost function per observation, shared by both solves (the problems do not own them).
+  std::vector<std::unique_ptr<ceres::CostFunction>> costs(observations.size());
   auto solve = [&](bool robust, int iterations) {
     ceres::Problem::Options po;
     po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     ceres::Problem problem(po);
     ceres::EigenQuaternionManifold quaternion_manifold;
     auto* ordering = new ceres::ParameterBlockOrdering;
     for (size_t i = 0; i < observations.size(); ++i) {
       if (!inlier[i]) continue;
       const BAObservation& o = observations[i];
-      const FrameFeatures& f = o.keyframe->features();
-      const size_t k = static_cast<size_t>(o.index);
-      const double inv_sigma = f.pyramid->inv_scale[static_cast<size_t>(f.levels[k])];
-      const bool stereo = f.right_u[k] >= 0;
-      ceres::CostFunction* cost = stereo ? ReprojectionCost<true>::create(K, f.points[k], f.right_u[k], inv_sigma)
-                                         : ReprojectionCost<false>::create(K, f.points[k], -1, inv_sigma);
+      const bool stereo = costs[i]->num_residuals() == 3;
       ceres::LossFunction* loss =
           robust ? new ceres::HuberLoss(std::sqrt(stereo ? options.tracking.chi2_stereo : options.tracking.chi2_mono))
                  : nullptr;
       double* pose = pose_blocks[pose_index.at(o.keyframe->id())].data();
       double* point = position_blocks[position_index.at(o.point->id())].data();
-      problem.AddResidualBlock(cost, loss, pose, pose + 4, point);
+      problem.AddResidualBlock(costs[i].get(), loss, pose, pose + 4, point);
       ordering->AddElementToGroup(point, 0);
       ordering->AddElementToGroup(pose, 1);
       ordering->AddElementToGroup(pose + 4, 1);
@@ -165,6 +164,16 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
 
   // From here to the write-back only copies and the (immutable) keyframe features are read.
   if (lock) lock->unlock();
+  for (size_t i = 0; i < observations.size(); ++i) {
+    const BAObservation& o = observations[i];
+    const FrameFeatures& f = o.keyframe->features();
+    const size_t k = static_cast<size_t>(o.index);
+    const double inv_sigma = f.pyramid->inv_scale[static_cast<size_t>(f.levels[k])];
+    if (f.right_u[k] >= 0)
+      costs[i] = std::make_unique<BundleReprojectionCost<3>>(K, f.points[k], f.right_u[k], inv_sigma);
+    else
+      costs[i] = std::make_unique<BundleReprojectionCost<2>>(K, f.points[k], -1, inv_sigma);
+  }
   if (m.ba_iterations_robust > 0) solve(true, m.ba_iterations_robust);
   classify();
   if (m.ba_iterations_refine > 0) solve(false, m.ba_iterations_refine);

@@ -85,6 +85,75 @@ struct ReprojectionCost : ReprojectionResidual<kStereo> {
   }
 };
 
+// The bundle-adjustment residual of ReprojectionCost with hand-written Jacobians in the same
+// ambient coordinates (q as Eigen stores it, x y z w; t; the point), so that the solver takes the same
+// steps as with automatic differentiation, about four times cheaper. With q = (w, v), Eigen
+// computes R p = p + 2 w (v x p) + 2 v x (v x p); its derivatives are
+//   d/dw = 2 (v x p),  d/dv = -2 w [p]x + 2 ((v . p) I + v p^T - 2 p v^T).
+// A test checks them against the automatic ones.
+template <int kResiduals>
+class BundleReprojectionCost : public ceres::SizedCostFunction<kResiduals, 4, 3, 3> {
+  static_assert(kResiduals == 2 || kResiduals == 3);
+
+ public:
+  BundleReprojectionCost(const PinholeIntrinsics& k, const Eigen::Vector2d& pixel, double right_u, double inv_sigma)
+      : k_(k), pixel_(pixel), right_u_(right_u), inv_sigma_(inv_sigma) {}
+
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const double* q = parameters[0];
+    const Eigen::Map<const Eigen::Vector3d> v(q), t(parameters[1]), p(parameters[2]);
+    const double w = q[3];
+    const Eigen::Vector3d vxp = v.cross(p);
+    const Eigen::Vector3d pc = p + 2.0 * w * vxp + 2.0 * v.cross(vxp) + t;
+    const double iz = 1.0 / pc.z(), s = inv_sigma_;
+    const double u = k_.fx * pc.x() * iz + k_.cx, vv = k_.fy * pc.y() * iz + k_.cy;
+    residuals[0] = (u - pixel_.x()) * s;
+    residuals[1] = (vv - pixel_.y()) * s;
+    if constexpr (kResiduals == 3) residuals[2] = (u - k_.bf * iz - right_u_) * s;
+    if (!jacobians) return true;
+    // d(residual)/d(pc), whitened.
+    Eigen::Matrix<double, kResiduals, 3> Jp;
+    Jp.row(0) << k_.fx * iz, 0, -k_.fx * pc.x() * iz * iz;
+    Jp.row(1) << 0, k_.fy * iz, -k_.fy * pc.y() * iz * iz;
+    if constexpr (kResiduals == 3) Jp.row(2) << k_.fx * iz, 0, (-k_.fx * pc.x() + k_.bf) * iz * iz;
+    Jp *= s;
+    if (jacobians[0]) {
+      Eigen::Matrix<double, 3, 4> Jq;
+      const double vp = v.dot(p);
+      Eigen::Matrix3d Jv = 2.0 * (vp * Eigen::Matrix3d::Identity() + v * p.transpose() - 2.0 * p * v.transpose());
+      Jv += -2.0 * w * skew(p);
+      Jq.leftCols<3>() = Jv;
+      Jq.col(3) = 2.0 * vxp;
+      Eigen::Map<Eigen::Matrix<double, kResiduals, 4, Eigen::RowMajor>> Jq_out(jacobians[0]);
+      Jq_out = Jp * Jq;
+    }
+    if (jacobians[1]) {
+      Eigen::Map<Eigen::Matrix<double, kResiduals, 3, Eigen::RowMajor>> Jt_out(jacobians[1]);
+      Jt_out = Jp;
+    }
+    if (jacobians[2]) {
+      // d(R p)/dp = R, with R written from the same (not necessarily unit) q as the formula above.
+      const Eigen::Matrix3d V = skew(v);
+      const Eigen::Matrix3d R = Eigen::Matrix3d::Identity() + 2.0 * w * V + 2.0 * V * V;
+      Eigen::Map<Eigen::Matrix<double, kResiduals, 3, Eigen::RowMajor>> Jx_out(jacobians[2]);
+      Jx_out = Jp * R;
+    }
+    return true;
+  }
+
+  static Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
+    Eigen::Matrix3d m;
+    m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+    return m;
+  }
+
+ private:
+  PinholeIntrinsics k_;
+  Eigen::Vector2d pixel_;
+  double right_u_;
+  double inv_sigma_;
+};
+
 // Reprojection residual of a fixed point under T = exp(delta) * T0, delta = (rho, phi) a left
 // perturbation, with the analytic Jacobian d(pc)/d(delta) = [I | -[pc]x] evaluated at the current
 // point (exact at delta = 0; each round restarts from delta = 0). About ten times cheaper than

@@ -174,3 +174,40 @@ TEST(PosePerturbationCost, CachedEvaluationEqualsUncached) {
 }
 
 }  // namespace wardmap::slam
+
+namespace wardmap::slam {
+
+// The hand-written bundle-adjustment Jacobians equal the automatic ones of ReprojectionCost (same
+// ambient coordinates), mono and stereo, at unit and non-unit quaternions; a wrong derivative term
+// is off by far more than the tolerance.
+TEST(BundleReprojectionCost, JacobiansEqualAutomaticDifferentiation) {
+  std::srand(7);
+  auto rnd = [] { return 2.0 * std::rand() / RAND_MAX - 1.0; };
+  for (int trial = 0; trial < 20; ++trial) {
+    Eigen::Quaterniond q(Eigen::AngleAxisd(1.5 * rnd(), Eigen::Vector3d(rnd(), rnd(), rnd()).normalized()));
+    if (trial % 4 == 3) q.coeffs() *= 1.1;  // Ceres may evaluate off the unit sphere
+    const std::vector<std::vector<double>> params = {
+        quaternion(q), {0.3 * rnd(), 0.3 * rnd(), 0.3 * rnd()}, {rnd(), rnd(), 0.5 * rnd()}};
+    // Keep the point in front of the camera.
+    Eigen::Vector3d pc = q.normalized() * Eigen::Vector3d(params[2][0], params[2][1], params[2][2]) +
+                         Eigen::Vector3d(params[1][0], params[1][1], params[1][2]);
+    if (pc.z() < 0.5) continue;
+    const Eigen::Vector2d px(300 + 40 * rnd(), 240 + 40 * rnd());
+    for (bool stereo : {false, true}) {
+      const double ur = stereo ? px.x() - 20 : -1;
+      std::unique_ptr<ceres::CostFunction> automatic(stereo ? ReprojectionCost<true>::create(kK, px, ur, 0.7)
+                                                            : ReprojectionCost<false>::create(kK, px, ur, 0.7));
+      std::unique_ptr<ceres::CostFunction> analytic(
+          stereo ? static_cast<ceres::CostFunction*>(new BundleReprojectionCost<3>(kK, px, ur, 0.7))
+                 : new BundleReprojectionCost<2>(kK, px, ur, 0.7));
+      Eigen::VectorXd r_auto, r_analytic;
+      const auto Jauto = analytic_jacobians(*automatic, params, &r_auto);
+      const auto Jan = analytic_jacobians(*analytic, params, &r_analytic);
+      EXPECT_LT((r_auto - r_analytic).norm(), 1e-9 * (1 + r_auto.norm()));
+      for (size_t b = 0; b < 3; ++b)
+        EXPECT_LT((Jauto[b] - Jan[b]).norm(), 1e-9 * (1 + Jauto[b].norm())) << "trial " << trial << " block " << b;
+    }
+  }
+}
+
+}  // namespace wardmap::slam
