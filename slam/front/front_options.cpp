@@ -81,7 +81,7 @@ void FrontOptions::validate(const std::filesystem::path& file) const {
   check_range(m.ba_max_fixed_keyframes, 0, 1000, "mapping.ba_max_fixed_keyframes", file);
   check_range(m.redundant_ratio, 0.0, 1.0, "mapping.redundant_ratio", file);
   check_range(m.redundant_observers, 1, 100, "mapping.redundant_observers", file);
-  check_range(m.inline_busy_frames, 0, 1000, "mapping.inline_busy_frames", file);
+  check_range(m.inline_busy_seconds, 0.0, 3600.0, "mapping.inline_busy_seconds", file);
   check_range(m.max_lag_frames, 0, 100000, "mapping.max_lag_frames", file);
   check_range(m.triangulation_neighbours_mono, 0, 100, "mapping.triangulation_neighbours_mono", file);
   check_range(m.recent_min_observations_mono, 1, 100, "mapping.recent_min_observations_mono", file);
@@ -178,7 +178,7 @@ FrontOptions load_front_options(const io::Settings& settings) {
   read_option(m, ms, "redundant_ratio", p.redundant_ratio, f);
   read_option(m, ms, "redundant_observers", p.redundant_observers, f);
   read_option(m, ms, "keyframe_culling", p.keyframe_culling, f);
-  read_option(m, ms, "inline_busy_frames", p.inline_busy_frames, f);
+  read_option(m, ms, "inline_busy_seconds", p.inline_busy_seconds, f);
   read_option(m, ms, "max_lag_frames", p.max_lag_frames, f);
   read_option(m, ms, "triangulation_neighbours_mono", p.triangulation_neighbours_mono, f);
   read_option(m, ms, "recent_min_observations_mono", p.recent_min_observations_mono, f);

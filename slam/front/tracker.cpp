@@ -245,6 +245,7 @@ bool Tracker::create_initial_map(Frame& first, Frame& second, const std::vector<
   add_to_place_database(kf2);
   reference_ = last_keyframe_ = kf2;
   last_keyframe_frame_ = second.id();
+  last_keyframe_time_ = second.timestamp();
   second.reference_keyframe = kf2;
   mapper_.enqueue(kf1);
   mapper_.enqueue(kf2);
@@ -263,6 +264,7 @@ bool Tracker::initialise_rgbd(Frame& frame) {
   add_to_place_database(kf);
   reference_ = last_keyframe_ = kf;
   last_keyframe_frame_ = frame.id();
+  last_keyframe_time_ = frame.timestamp();
   frame.reference_keyframe = kf;
   mapper_.enqueue(kf);
   mapper_.process_queued();
@@ -356,8 +358,8 @@ KeyFrameEvidence Tracker::evidence(const Frame& frame, int inliers) const {
     else
       ++e.untracked_close;
   }
-  e.mapper_idle = mapper_.idle() &&
-                  (mapper_.threaded() || e.frames_since_keyframe > options_.mapping.inline_busy_frames);
+  e.mapper_idle = mapper_.idle() && (mapper_.threaded() || frame.timestamp() - last_keyframe_time_ >=
+                                                               options_.mapping.inline_busy_seconds);
   e.mapper_queue_full = mapper_.queue_full();
   return e;
 }
@@ -373,6 +375,7 @@ void Tracker::insert_keyframe(Frame& frame) {
   add_to_place_database(kf);
   reference_ = last_keyframe_ = kf;
   last_keyframe_frame_ = frame.id();
+  last_keyframe_time_ = frame.timestamp();
   frame.reference_keyframe = kf;
   if (!mapper_.enqueue(kf)) return;  // mapper saturated: the keyframe still serves as reference
   mapper_.process_queued();          // inline mapping in this milestone

@@ -90,6 +90,7 @@ class Tracker {
   std::shared_ptr<KeyFrame> reference_;
   std::shared_ptr<KeyFrame> last_keyframe_;
   std::uint64_t last_keyframe_frame_ = 0;
+  double last_keyframe_time_ = 0;  // its timestamp
   SE3 initial_pose_cw_;
   int frames_lost_ = 0;
   // Monocular initialisation: the first frame of the pair and where its keypoints were last matched.
