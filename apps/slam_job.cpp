@@ -3,8 +3,12 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
+#include <thread>
+#include <utility>
 #include <nlohmann/json.hpp>
 
 #include "apps/detection_cache.h"
@@ -70,6 +74,8 @@ double run_slam_job(const SlamJob& job) {
     throw InputError(job.sequence.string(), "--mode rgbd needs depth images, and this sequence has none");
   options.monocular = mode == "mono";
   options.mapping_thread = !job.deterministic;
+  if (job.realtime && job.deterministic)
+    throw InputError("--realtime", "paces the input for the mapper thread, which --deterministic does not run");
   const auto& cam = settings.camera.camera;
   if (cam.width != info.width || cam.height != info.height)
     throw InputError(settings_file.string(), "calibration is for " + std::to_string(cam.width) + "x" +
@@ -103,9 +109,16 @@ double run_slam_job(const SlamJob& job) {
     if (!job.deterministic) objects_setup->cache->start(kDetectionQueue);
   }
   Progress progress("slam", reader->size(), job.progress);
+  std::optional<std::pair<std::chrono::steady_clock::time_point, double>> clock_start;  // --realtime
   for (size_t i = 0; i < reader->size(); ++i) {
     progress.update(i + 1);
     const slam::io::Frame frame = reader->read(i);
+    if (job.realtime) {  // the frame is delivered at its own time, measured from the first one's
+      if (!clock_start) clock_start.emplace(std::chrono::steady_clock::now(), frame.timestamp);
+      std::this_thread::sleep_until(clock_start->first +
+                                    std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                        std::chrono::duration<double>(frame.timestamp - clock_start->second)));
+    }
     const slam::FrameResult r = front.process(frame);
     if (r.keyframe && objects_setup) objects_setup->cache->offer(frame.timestamp, frame.image);
     statuses.push_back(r.relocalised ? "relocalised"
@@ -136,6 +149,7 @@ double run_slam_job(const SlamJob& job) {
 
   const slam::Trajectory traj = front.trajectory();
   json report = {{"sequence", job.sequence.string()}, {"mode", mode}, {"settings", settings_file.string()},
+                 {"realtime", job.realtime},
                  {"frames", reader->size()}, {"frames_in_final_map", traj.size()}, {"submaps", front.submaps().size()},
                  {"tracking_ms", {{"median", 1e3 * percentile(seconds, 0.5)}, {"p95", 1e3 * percentile(seconds, 0.95)},
                                   {"max", 1e3 * percentile(seconds, 1.0)}}},
@@ -152,6 +166,7 @@ double run_slam_job(const SlamJob& job) {
   }
   double rate = -1;
   std::string md = "# wardmap run (SLAM front-process)\n\n- sequence: `" + job.sequence.string() + "`\n- mode: " + mode +
+                   (job.deterministic ? ", deterministic (mapping inline)" : job.realtime ? ", threaded, input at the sequence's rate (--realtime)" : ", threaded") +
                    "\n- frames: " + std::to_string(reader->size()) + ", in the final map: " + std::to_string(traj.size()) +
                    ", submaps: " + std::to_string(front.submaps().size()) + "\n";
   char buf[256];

@@ -19,6 +19,9 @@ struct SlamJob {
   std::filesystem::path vocabulary;  // empty: $WARDMAP_VOCABULARY, then data/vocabulary/orb-k10l4.bin  // local mapping on the tracking thread: identical output on reruns
   // When set, the semantic layer maps the objects on the final map's keyframes.
   const SemanticJob* objects = nullptr;
+  // Feed the frames no faster than their timestamps, as a live camera would, so that the mapper
+  // thread has the time it would have live (offline input otherwise arrives 3-8x faster). Threaded only.
+  bool realtime = false;
 };
 
 // The place-recognition vocabulary: `given`, else $WARDMAP_VOCABULARY, else the project's shipped one;

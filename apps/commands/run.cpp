@@ -20,6 +20,7 @@ struct RunArgs {
   std::string poses = "slam";
   std::string mode;  // empty: rgbd when the sequence has depth, else mono
   bool deterministic = false;
+  bool realtime = false;
   bool objects = false;
   std::filesystem::path vocabulary;
 };
@@ -29,6 +30,7 @@ void run(RunArgs& a) {
     spdlog::info("run: {} (SLAM front-process{})", a.job.sequence.string(), a.mode.empty() ? "" : ", " + a.mode);
     SlamJob s{a.job.sequence, a.job.settings, a.job.out, a.mode, a.job.progress, a.deterministic, a.vocabulary,
               a.objects ? &a.job : nullptr};
+    s.realtime = a.realtime;
     run_slam_job(s);
     return;
   }
@@ -86,6 +88,10 @@ void add_run_command(CLI::App& app) {
                                                  "$WARDMAP_VOCABULARY, then data/vocabulary/orb-k10l4.bin)");
   cmd->add_flag("--objects", a->objects, "With --poses slam: also map the objects on the SLAM's keyframes (needs --out)");
   cmd->add_flag("--deterministic", a->deterministic, "Byte-identical output on reruns: local mapping runs on the tracking thread instead of its own");
+  cmd->add_flag("--realtime", a->realtime,
+                "Feed the frames at the sequence's own rate (their timestamps), as a live camera would: the mapper\n"
+                "thread then has the time per frame it would have live (offline input otherwise arrives several times faster)")
+      ->excludes("--deterministic");
   add_semantic_options(cmd, a->job);
   cmd->callback([a] { run(*a); });
 }

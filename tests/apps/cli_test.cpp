@@ -2,6 +2,7 @@
 // file, the line where there is one, and the problem; no partial output file.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
@@ -217,6 +218,27 @@ TEST(CliPipeline, ThreadedRgbdRunIsAccurate) {
     EXPECT_GT(ate, 0);
     EXPECT_LT(ate, 0.02) << "ATE (SE(3)) " << ate << " m";
   }
+}
+
+// --realtime feeds the frames at their timestamps (the run lasts at least the sequence's span) and
+// says so in the report; it cannot be combined with --deterministic.
+TEST(CliPipeline, RealtimeRunIsPacedAtTheSequencesRate) {
+  const fs::path dir = scratch_dir();
+  ASSERT_EQ(wardmap_cli("-q synth --scenario ward --variant slow --frames 45 --out " + shq(dir / "seq")).code, 0);
+  const auto start = std::chrono::steady_clock::now();
+  const CliResult r = wardmap_cli("-q run " + shq(dir / "seq") + " --mode rgbd --realtime --out " + shq(dir / "run"));
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("tracking rate 100.0 %"), std::string::npos) << r.output;
+  EXPECT_GE(wall, 44.0 / 30.0) << "45 frames at 30 Hz span 1.47 s";
+  std::ifstream in(dir / "run" / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_TRUE(report.at("realtime").get<bool>());
+  const CliResult both =
+      wardmap_cli("-q run " + shq(dir / "seq") + " --realtime --deterministic --out " + shq(dir / "run2"));
+  EXPECT_NE(both.code, 0);
+  EXPECT_NE(both.output.find("excludes"), std::string::npos) << both.output;
+  EXPECT_FALSE(fs::exists(dir / "run2" / "report.json"));
 }
 
 }  // namespace
