@@ -104,7 +104,7 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
     po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     ceres::Problem problem(po);
-    ceres::EigenQuaternionManifold quaternion_manifold;
+    ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::EuclideanManifold<3>> pose_manifold;
     auto* ordering = new ceres::ParameterBlockOrdering;
     for (size_t i = 0; i < observations.size(); ++i) {
       if (!inlier[i]) continue;
@@ -115,19 +115,15 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
                  : nullptr;
       double* pose = pose_blocks[pose_index.at(o.keyframe->id())].data();
       double* point = position_blocks[position_index.at(o.point->id())].data();
-      problem.AddResidualBlock(costs[i].get(), loss, pose, pose + 4, point);
+      problem.AddResidualBlock(costs[i].get(), loss, pose, point);
       ordering->AddElementToGroup(point, 0);
       ordering->AddElementToGroup(pose, 1);
-      ordering->AddElementToGroup(pose + 4, 1);
     }
     for (const auto& [id, i] : pose_index) {
       auto& p = pose_blocks[i];
       if (!problem.HasParameterBlock(p.data())) continue;
-      problem.SetManifold(p.data(), &quaternion_manifold);
-      if (constant.count(id)) {
-        problem.SetParameterBlockConstant(p.data());
-        problem.SetParameterBlockConstant(p.data() + 4);
-      }
+      problem.SetManifold(p.data(), &pose_manifold);
+      if (constant.count(id)) problem.SetParameterBlockConstant(p.data());
     }
     ceres::Solver::Options so;
     so.linear_solver_type = ceres::DENSE_SCHUR;

@@ -87,12 +87,14 @@ struct ReprojectionCost : ReprojectionResidual<kStereo> {
 
 // The bundle-adjustment residual of ReprojectionCost with hand-written Jacobians in the same
 // ambient coordinates (q as Eigen stores it, x y z w; t; the point), so that the solver takes the same
-// steps as with automatic differentiation, about four times cheaper. With q = (w, v), Eigen
+// steps as with automatic differentiation, about four times cheaper. The pose is one block of 7
+// (q then t; give it ProductManifold<EigenQuaternionManifold, EuclideanManifold<3>>): Ceres then
+// eliminates the points into 6x6 camera blocks, not twice as many 3x3 ones. With q = (w, v), Eigen
 // computes R p = p + 2 w (v x p) + 2 v x (v x p); its derivatives are
 //   d/dw = 2 (v x p),  d/dv = -2 w [p]x + 2 ((v . p) I + v p^T - 2 p v^T).
 // A test checks them against the automatic ones.
 template <int kResiduals>
-class BundleReprojectionCost : public ceres::SizedCostFunction<kResiduals, 4, 3, 3> {
+class BundleReprojectionCost : public ceres::SizedCostFunction<kResiduals, 7, 3> {
   static_assert(kResiduals == 2 || kResiduals == 3);
 
  public:
@@ -101,7 +103,7 @@ class BundleReprojectionCost : public ceres::SizedCostFunction<kResiduals, 4, 3,
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     const double* q = parameters[0];
-    const Eigen::Map<const Eigen::Vector3d> v(q), t(parameters[1]), p(parameters[2]);
+    const Eigen::Map<const Eigen::Vector3d> v(q), t(q + 4), p(parameters[1]);
     const double w = q[3];
     const Eigen::Vector3d vxp = v.cross(p);
     const Eigen::Vector3d pc = p + 2.0 * w * vxp + 2.0 * v.cross(vxp) + t;
@@ -124,18 +126,15 @@ class BundleReprojectionCost : public ceres::SizedCostFunction<kResiduals, 4, 3,
       Jv += -2.0 * w * skew(p);
       Jq.leftCols<3>() = Jv;
       Jq.col(3) = 2.0 * vxp;
-      Eigen::Map<Eigen::Matrix<double, kResiduals, 4, Eigen::RowMajor>> Jq_out(jacobians[0]);
-      Jq_out = Jp * Jq;
+      Eigen::Map<Eigen::Matrix<double, kResiduals, 7, Eigen::RowMajor>> J_pose(jacobians[0]);
+      J_pose.template leftCols<4>() = Jp * Jq;
+      J_pose.template rightCols<3>() = Jp;
     }
     if (jacobians[1]) {
-      Eigen::Map<Eigen::Matrix<double, kResiduals, 3, Eigen::RowMajor>> Jt_out(jacobians[1]);
-      Jt_out = Jp;
-    }
-    if (jacobians[2]) {
       // d(R p)/dp = R, with R written from the same (not necessarily unit) q as the formula above.
       const Eigen::Matrix3d V = skew(v);
       const Eigen::Matrix3d R = Eigen::Matrix3d::Identity() + 2.0 * w * V + 2.0 * V * V;
-      Eigen::Map<Eigen::Matrix<double, kResiduals, 3, Eigen::RowMajor>> Jx_out(jacobians[2]);
+      Eigen::Map<Eigen::Matrix<double, kResiduals, 3, Eigen::RowMajor>> Jx_out(jacobians[1]);
       Jx_out = Jp * R;
     }
     return true;
