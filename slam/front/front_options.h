@@ -98,7 +98,9 @@ struct MappingOptions {
   // after it was made (offline input arrives faster than a camera's; the map must keep up).
   int max_lag_frames = 3;                  // mapping.max_lag_frames
   int triangulation_neighbours_mono = 20;  // mapping.triangulation_neighbours_mono
-  int recent_min_observations_mono = 2;    // mapping.recent_min_observations_mono
+  // Monocular: a new point seen by fewer keyframes than this two keyframes after its creation is
+  // culled, ORB-SLAM3's rule for monocular maps (<= 2 observations).
+  int recent_min_observations_mono = 3;    // mapping.recent_min_observations_mono
   double min_baseline_depth_ratio = 0.01;  // mapping.min_baseline_depth_ratio: monocular triangulation
 };
 
