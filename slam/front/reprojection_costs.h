@@ -69,7 +69,8 @@ struct PoseReprojectionCost : ReprojectionResidual<kStereo> {
   Eigen::Vector3d point_;
 };
 
-// Bundle adjustment: pose and point. Parameters: q (4), t (3), point (3).
+// Bundle adjustment: pose and point, by automatic differentiation. Parameters: q (4), t (3), point (3).
+// The local BA uses BundleReprojectionCost below; this is the reference its test checks it against.
 template <bool kStereo>
 struct ReprojectionCost : ReprojectionResidual<kStereo> {
   static constexpr int kResiduals = kStereo ? 3 : 2;
