@@ -6,10 +6,11 @@
 #pragma once
 
 #include <array>
-#include <opencv2/core.hpp>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <opencv2/core.hpp>
 
 namespace wardmap::semantics {
 

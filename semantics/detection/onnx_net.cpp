@@ -19,24 +19,26 @@ cv::dnn::Net on_cpu(cv::dnn::Net net, const std::filesystem::path& file) {
   return net;
 }
 
-// cv::dnn's ONNX reader on the model's bytes, already read; OpenCV's errors name the file.
-cv::dnn::Net net_from_bytes(const std::string& bytes, const std::filesystem::path& file) {
+// Runs a cv::dnn ONNX reader; OpenCV's errors become an InputError naming the file.
+template <typename Read>
+cv::dnn::Net read_checked(const std::filesystem::path& file, Read read) {
   try {
-    return on_cpu(cv::dnn::readNetFromONNX(bytes.data(), bytes.size()), file);
+    return on_cpu(read(), file);
   } catch (const cv::Exception& ex) {
     throw InputError(file.string(), "cannot load the ONNX model: " + ex.msg);
   }
+}
+
+// The model's bytes, already read.
+cv::dnn::Net net_from_bytes(const std::string& bytes, const std::filesystem::path& file) {
+  return read_checked(file, [&] { return cv::dnn::readNetFromONNX(bytes.data(), bytes.size()); });
 }
 
 }  // namespace
 
 cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint) {
   if (!std::filesystem::is_regular_file(file)) throw InputError(file.string(), missing_hint);
-  try {
-    return on_cpu(cv::dnn::readNetFromONNX(file.string()), file);
-  } catch (const cv::Exception& ex) {
-    throw InputError(file.string(), "cannot load the ONNX model: " + ex.msg);
-  }
+  return read_checked(file, [&] { return cv::dnn::readNetFromONNX(file.string()); });
 }
 
 cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint,
