@@ -208,6 +208,12 @@ OrbExtractor::OrbExtractor(const OrbOptions& options)
   rotation_pattern();
 }
 
+cv::Point2f level_to_image(cv::Point2f p, cv::Size level, cv::Size image) {
+  const float rx = static_cast<float>(image.width) / static_cast<float>(level.width);
+  const float ry = static_cast<float>(image.height) / static_cast<float>(level.height);
+  return {(p.x + 0.5f) * rx - 0.5f, (p.y + 0.5f) * ry - 0.5f};
+}
+
 std::vector<cv::Mat> OrbExtractor::build_pyramid(const cv::Mat& grey) const {
   std::vector<cv::Mat> levels(options_.n_levels);
   levels[0] = grey;
@@ -457,9 +463,7 @@ OrbFeatures OrbExtractor::extract(const cv::Mat& grey) const {
                                                          static_cast<int>(out.keypoints.size() + kps.size())));
     const float s = static_cast<float>(pyramid_.scale[l]);
     for (cv::KeyPoint& k : kps) {
-      // To level-0 pixels; cv::resize maps pixel centres, so x0 = (x_l + 0.5) s - 0.5.
-      k.pt.x = (k.pt.x + 0.5f) * s - 0.5f;
-      k.pt.y = (k.pt.y + 0.5f) * s - 0.5f;
+      k.pt = level_to_image(k.pt, levels[l].size(), grey.size());
       k.size = kPatchSize * s;
       k.class_id = static_cast<int>(out.keypoints.size());
       out.keypoints.push_back(k);

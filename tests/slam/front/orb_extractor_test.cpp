@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
@@ -52,6 +53,36 @@ TEST(OrbExtractor, FillsTheImageWithAboutNFeatures) {
     for (int c : row) EXPECT_GE(c, 20);
   EXPECT_GT(per_level[0], per_level[4]);
   EXPECT_GT(per_level[4], 0);
+}
+
+// A keypoint found at a pixel of a pyramid level must be reported at the level-0 position that pixel
+// was sampled from. Resizing an image whose value is its own x (or y) coordinate gives, at each level
+// pixel, exactly that position (bilinear interpolation of a linear ramp), whatever the rounding of
+// the level sizes.
+TEST(OrbExtractor, LevelPixelsMapToTheImagePositionsTheyWereSampledFrom) {
+  for (const cv::Size size : {cv::Size(640, 480), cv::Size(1242, 375)}) {
+    cv::Mat xs(size, CV_32F), ys(size, CV_32F);
+    for (int v = 0; v < size.height; ++v)
+      for (int u = 0; u < size.width; ++u) {
+        xs.at<float>(v, u) = static_cast<float>(u);
+        ys.at<float>(v, u) = static_cast<float>(v);
+      }
+    const OrbExtractor extractor{OrbOptions{}};
+    const std::vector<cv::Mat> px = extractor.build_pyramid(xs), py = extractor.build_pyramid(ys);
+    ASSERT_EQ(px.size(), 8u);
+    double worst = 0;
+    for (size_t l = 1; l < px.size(); ++l) {
+      // Away from the border, where cv::resize clamps its samples.
+      for (int v = 2; v < px[l].rows - 2; ++v)
+        for (int u = 2; u < px[l].cols - 2; ++u) {
+          const cv::Point2f p = level_to_image(cv::Point2f(static_cast<float>(u), static_cast<float>(v)),
+                                               px[l].size(), size);
+          worst = std::max({worst, static_cast<double>(std::abs(p.x - px[l].at<float>(v, u))),
+                            static_cast<double>(std::abs(p.y - py[l].at<float>(v, u)))});
+        }
+    }
+    EXPECT_LT(worst, 0.01) << size << ": largest gap between a level pixel's mapped and sampled position (px)";
+  }
 }
 
 TEST(OrbExtractor, IntensityCentroidPointsTowardsTheBrightSide) {
