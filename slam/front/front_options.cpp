@@ -86,6 +86,7 @@ void FrontOptions::validate(const std::filesystem::path& file) const {
   check_range(m.triangulation_neighbours_mono, 0, 100, "mapping.triangulation_neighbours_mono", file);
   check_range(m.recent_min_observations_mono, 1, 100, "mapping.recent_min_observations_mono", file);
   check_range(m.min_baseline_depth_ratio, 0.0, 1.0, "mapping.min_baseline_depth_ratio", file);
+  check_range(m.min_parallax_deg_mono, 0.0, 90.0, "mapping.min_parallax_deg_mono", file);
 }
 
 FrontOptions load_front_options(const io::Settings& settings) {
@@ -183,6 +184,7 @@ FrontOptions load_front_options(const io::Settings& settings) {
   read_option(m, ms, "triangulation_neighbours_mono", p.triangulation_neighbours_mono, f);
   read_option(m, ms, "recent_min_observations_mono", p.recent_min_observations_mono, f);
   read_option(m, ms, "min_baseline_depth_ratio", p.min_baseline_depth_ratio, f);
+  read_option(m, ms, "min_parallax_deg_mono", p.min_parallax_deg_mono, f);
   o.validate(f);
   return o;
 }

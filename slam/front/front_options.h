@@ -79,7 +79,7 @@ struct MappingOptions {
   int queue_capacity = 8;            // mapping.queue_capacity: keyframes waiting for the mapper
   int triangulation_neighbours = 5;  // mapping.triangulation_neighbours
   int fuse_neighbours = 10;          // mapping.fuse_neighbours
-  double min_parallax_deg = 1.0;     // mapping.min_parallax_deg: triangulation parallax
+  double min_parallax_deg = 1.0;     // mapping.min_parallax_deg: triangulation parallax (RGB-D)
   double recent_found_ratio = 0.25;  // mapping.recent_found_ratio: culling of new points
   int recent_min_observations = 3;   // mapping.recent_min_observations
   int ba_iterations_robust = 5;      // mapping.ba_iterations_robust
@@ -102,6 +102,8 @@ struct MappingOptions {
   // culled, ORB-SLAM3's rule for monocular maps (<= 2 observations).
   int recent_min_observations_mono = 3;    // mapping.recent_min_observations_mono
   double min_baseline_depth_ratio = 0.01;  // mapping.min_baseline_depth_ratio: monocular triangulation
+  // Monocular triangulation parallax: ORB-SLAM3's cos < 0.9998 for points without depth.
+  double min_parallax_deg_mono = 1.146;    // mapping.min_parallax_deg_mono
 };
 
 struct FrontOptions {

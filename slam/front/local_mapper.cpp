@@ -145,7 +145,8 @@ void LocalMapper::triangulate_with_neighbours(const std::shared_ptr<KeyFrame>& k
   const int n = mono ? options_.mapping.triangulation_neighbours_mono : options_.mapping.triangulation_neighbours;
   if (n <= 0) return;
   const FrameFeatures& f1 = kf->features();
-  const double cos_max = std::cos(options_.mapping.min_parallax_deg * M_PI / 180.0);
+  const double cos_max =
+      std::cos((mono ? options_.mapping.min_parallax_deg_mono : options_.mapping.min_parallax_deg) * M_PI / 180.0);
   const double chi2_mono = options_.tracking.chi2_mono;
   for (const auto& nb : kf->best_covisibles(n)) {
     const double baseline = (nb->camera_center() - kf->camera_center()).norm();
