@@ -15,8 +15,8 @@ struct SlamJob {
   std::filesystem::path out;
   std::string mode;  // "rgbd", "mono", or empty: rgbd when the sequence has depth, else mono
   bool progress = true;
-  bool deterministic = false;
-  std::filesystem::path vocabulary;  // empty: $WARDMAP_VOCABULARY, then data/vocabulary/orb-k10l4.bin  // local mapping on the tracking thread: identical output on reruns
+  bool deterministic = false;        // local mapping on the tracking thread: identical output on reruns
+  std::filesystem::path vocabulary;  // empty: $WARDMAP_VOCABULARY, then data/vocabulary/orb-k10l4.bin
   // When set, the semantic layer maps the objects on the final map's keyframes.
   const SemanticJob* objects = nullptr;
   // Feed the frames no faster than their timestamps, as a live camera would, so that the mapper
