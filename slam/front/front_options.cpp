@@ -79,6 +79,8 @@ void FrontOptions::validate(const std::filesystem::path& file) const {
   check_range(m.ba_iterations_refine, 0, 1000, "mapping.ba_iterations_refine", file);
   check_range(m.ba_max_keyframes, 1, 1000, "mapping.ba_max_keyframes", file);
   check_range(m.ba_max_fixed_keyframes, 0, 1000, "mapping.ba_max_fixed_keyframes", file);
+  check_range(m.ba_max_keyframes_mono, 1, 1000, "mapping.ba_max_keyframes_mono", file);
+  check_range(m.ba_max_fixed_keyframes_mono, 0, 1000, "mapping.ba_max_fixed_keyframes_mono", file);
   check_range(m.redundant_ratio, 0.0, 1.0, "mapping.redundant_ratio", file);
   check_range(m.redundant_observers, 1, 100, "mapping.redundant_observers", file);
   check_range(m.inline_busy_seconds, 0.0, 3600.0, "mapping.inline_busy_seconds", file);
@@ -176,11 +178,15 @@ FrontOptions load_front_options(const io::Settings& settings) {
   read_option(m, ms, "ba_iterations_refine", p.ba_iterations_refine, f);
   read_option(m, ms, "ba_max_keyframes", p.ba_max_keyframes, f);
   read_option(m, ms, "ba_max_fixed_keyframes", p.ba_max_fixed_keyframes, f);
+  read_option(m, ms, "ba_max_keyframes_mono", p.ba_max_keyframes_mono, f);
+  read_option(m, ms, "ba_max_fixed_keyframes_mono", p.ba_max_fixed_keyframes_mono, f);
   read_option(m, ms, "redundant_ratio", p.redundant_ratio, f);
   read_option(m, ms, "redundant_observers", p.redundant_observers, f);
   read_option(m, ms, "keyframe_culling", p.keyframe_culling, f);
   read_option(m, ms, "inline_busy_seconds", p.inline_busy_seconds, f);
   read_option(m, ms, "max_lag_frames", p.max_lag_frames, f);
+  read_option(m, ms, "sequence_time_for_mapper", p.sequence_time_for_mapper, f);
+  read_option(m, ms, "abort_ba_when_behind", p.abort_ba_when_behind, f);
   read_option(m, ms, "triangulation_neighbours_mono", p.triangulation_neighbours_mono, f);
   read_option(m, ms, "recent_min_observations_mono", p.recent_min_observations_mono, f);
   read_option(m, ms, "min_baseline_depth_ratio", p.min_baseline_depth_ratio, f);

@@ -50,6 +50,18 @@ FrameResult FrontProcess::process(const io::Frame& in) {
     mapper_.wait_idle();
     wait_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - wait_start).count();
   };
+  // A live camera gives the mapper the sequence time between frames; offline input arrives faster.
+  // The mapper gets that time here (it is never waited for longer), so that the keyframes a threaded
+  // run makes do not depend on how fast the frames are read.
+  if (threaded && options_.mapping.sequence_time_for_mapper && keyframe_timestamp_ >= 0 && !mapper_.idle()) {
+    const double budget = (in.timestamp - keyframe_timestamp_) -
+                          std::chrono::duration<double>(std::chrono::steady_clock::now() - keyframe_clock_).count();
+    if (budget > 0) {
+      const auto wait_start = std::chrono::steady_clock::now();
+      mapper_.wait_idle_for(budget);
+      wait_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - wait_start).count();
+    }
+  }
   if (threaded && frames_since_keyframe_ >= options_.mapping.max_lag_frames && !mapper_.idle()) wait_for_mapper();
   ++frames_since_keyframe_;
   FrameResult r;
@@ -69,7 +81,11 @@ FrameResult FrontProcess::process(const io::Frame& in) {
     r.tracked = t.tracked;
     r.keyframe = t.keyframe;
     r.relocalised = t.relocalised;
-    if (t.keyframe) frames_since_keyframe_ = 0;
+    if (t.keyframe) {
+      frames_since_keyframe_ = 0;
+      keyframe_clock_ = std::chrono::steady_clock::now();
+      keyframe_timestamp_ = in.timestamp;
+    }
     r.features = static_cast<int>(frame.size());
     r.matches = t.matches;
     r.inliers = t.inliers;

@@ -5,6 +5,8 @@
 // submap is started, seeded at the last tracked pose; the old submaps are kept for a later merge.
 #pragma once
 
+#include <chrono>
+
 #include <memory>
 #include <vector>
 
@@ -91,6 +93,9 @@ class FrontProcess {
   std::vector<Record> records_;
   std::uint64_t next_frame_id_ = 0;
   int frames_since_keyframe_ = 0;
+  // When the last keyframe went to the mapper: wall clock and the frame's timestamp.
+  std::chrono::steady_clock::time_point keyframe_clock_;
+  double keyframe_timestamp_ = -1;
   SE3 last_tracked_pose_cw_;
 };
 

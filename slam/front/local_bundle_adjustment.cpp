@@ -21,15 +21,32 @@ struct BAObservation {
   int index;
 };
 
+// Ends a solve, keeping its current state, once `abort` says so.
+class AbortCallback : public ceres::IterationCallback {
+ public:
+  AbortCallback(const std::function<bool()>& abort, bool& aborted) : abort_(abort), aborted_(aborted) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
+    if (!abort_ || !abort_()) return ceres::SOLVER_CONTINUE;
+    aborted_ = true;
+    return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+  }
+
+ private:
+  const std::function<bool()>& abort_;
+  bool& aborted_;
+};
+
 }  // namespace
 
 LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe, Submap& submap,
                                       const PinholeCamera& camera, const FrontOptions& options,
-                                      std::unique_lock<std::mutex>* lock) {
+                                      std::unique_lock<std::mutex>* lock, const std::function<bool()>& abort) {
   LocalBAResult result;
   const MappingOptions& m = options.mapping;
   // Local keyframes and points.
-  std::vector<std::shared_ptr<KeyFrame>> local = keyframe->best_covisibles(m.ba_max_keyframes - 1);
+  const int max_keyframes = options.monocular ? m.ba_max_keyframes_mono : m.ba_max_keyframes;
+  const int max_fixed = options.monocular ? m.ba_max_fixed_keyframes_mono : m.ba_max_fixed_keyframes;
+  std::vector<std::shared_ptr<KeyFrame>> local = keyframe->best_covisibles(max_keyframes - 1);
   local.insert(local.begin(), keyframe);
   std::unordered_set<KeyFrameId> local_ids;
   for (const auto& kf : local) local_ids.insert(kf->id());
@@ -53,7 +70,7 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
   std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
   std::map<KeyFrameId, std::shared_ptr<KeyFrame>> fixed;
   for (const auto& [n, kf] : ranked) {
-    if (static_cast<int>(fixed.size()) >= m.ba_max_fixed_keyframes) break;
+    if (static_cast<int>(fixed.size()) >= max_fixed) break;
     fixed[kf->id()] = kf;
   }
 
@@ -131,6 +148,8 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
     so.max_num_iterations = iterations;
     so.logging_type = ceres::SILENT;
     so.num_threads = 1;
+    AbortCallback stop(abort, result.aborted);
+    if (abort) so.callbacks.push_back(&stop);
     ceres::Solver::Summary summary;
     ceres::Solve(so, &problem, &summary);
     if (result.initial_cost == 0) result.initial_cost = summary.initial_cost;
@@ -172,7 +191,7 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
   }
   if (m.ba_iterations_robust > 0) solve(true, m.ba_iterations_robust);
   classify();
-  if (m.ba_iterations_refine > 0) solve(false, m.ba_iterations_refine);
+  if (m.ba_iterations_refine > 0 && !result.aborted) solve(false, m.ba_iterations_refine);
   result.outliers = classify();
   if (lock) lock->lock();
 

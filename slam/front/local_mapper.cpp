@@ -51,6 +51,16 @@ void LocalMapper::wait_idle() {
   idle_cv_.wait(lock, [this] { return queue_.empty() && !busy_; });
 }
 
+bool LocalMapper::wait_idle_for(double seconds) {
+  if (!worker_.joinable()) {
+    process_queued();
+    return true;
+  }
+  std::unique_lock<std::mutex> lock(idle_mutex_);
+  return idle_cv_.wait_for(lock, std::chrono::duration<double>(std::max(0.0, seconds)),
+                           [this] { return queue_.empty() && !busy_; });
+}
+
 void LocalMapper::set_submap(std::shared_ptr<Submap> submap) {
   submap_ = std::move(submap);
   recent_points_.clear();
@@ -62,6 +72,7 @@ void LocalMapper::process_queued() {
 }
 
 void LocalMapper::process(const std::shared_ptr<KeyFrame>& kf) {
+  interrupt_ba_ = false;  // a request made before this keyframe is not for its BA
   if (!submap_) return;
   // Threaded: hold the submap's lock step by step (the tracker holds it for a whole frame) and let
   // the tracker in between steps. Inline: the caller already is the tracker.
@@ -95,7 +106,11 @@ void LocalMapper::process(const std::shared_ptr<KeyFrame>& kf) {
   lap(stats_.t_fuse);
   if (!behind()) {
     if (submap_->num_keyframes() > 2)
-      stats_.last_ba = local_bundle_adjustment(kf, *submap_, camera_, options_, lock.owns_lock() ? &lock : nullptr);
+      stats_.last_ba = local_bundle_adjustment(kf, *submap_, camera_, options_, lock.owns_lock() ? &lock : nullptr,
+                                               options_.mapping.abort_ba_when_behind
+                                                   ? std::function<bool()>([&] { return behind() || interrupt_ba_; })
+                                                   : std::function<bool()>());
+    if (stats_.last_ba.aborted) ++stats_.ba_aborted;
     lap(stats_.t_ba);
     if (options_.mapping.keyframe_culling) cull_keyframes(kf);
     lap(stats_.t_cull_keyframes);

@@ -31,6 +31,7 @@ struct LocalMapperStats {
   int culled_keyframes = 0;
   int fused = 0;
   int deferred = 0;  // keyframes mapped without fusion, BA and culling: the threaded mapper was behind
+  int ba_aborted = 0;  // local BAs cut short because a new keyframe was waiting (threaded)
   LocalBAResult last_ba;
   // Wall time spent per stage (seconds, summed over keyframes).
   double t_register = 0, t_cull = 0, t_triangulate = 0, t_fuse = 0, t_ba = 0, t_cull_keyframes = 0;
@@ -57,7 +58,12 @@ class LocalMapper {
   void start();
   void stop();
   void wait_idle();
+  // Threaded: waits until idle or until `seconds` have passed; true when idle. Inline: wait_idle().
+  bool wait_idle_for(double seconds);
   bool threaded() const { return worker_.joinable(); }
+  // The tracker wants a keyframe while the mapper is busy (ORB-SLAM's InterruptBA): the local BA
+  // running now stops at its next iteration (mapping.abort_ba_when_behind).
+  void interrupt_ba() { interrupt_ba_ = true; }
   void process(const std::shared_ptr<KeyFrame>& keyframe);
   // Read only when idle or stopped in threaded mode.
   const LocalMapperStats& stats() const { return stats_; }
@@ -79,6 +85,7 @@ class LocalMapper {
   LocalMapperStats stats_;
   std::thread worker_;
   std::atomic<bool> busy_{false};
+  std::atomic<bool> interrupt_ba_{false};
   std::mutex idle_mutex_;
   std::condition_variable idle_cv_;
 };

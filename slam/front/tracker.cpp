@@ -95,6 +95,10 @@ TrackingOutcome Tracker::track(Frame& frame) {
     if (need_new_keyframe(ev, options_.tracking)) {
       insert_keyframe(frame);
       out.keyframe = true;
+    } else if (!ev.mapper_idle && mapper_.threaded()) {
+      KeyFrameEvidence if_idle = ev;
+      if_idle.mapper_idle = true;
+      if (need_new_keyframe(if_idle, options_.tracking)) mapper_.interrupt_ba();  // a keyframe next frame
     }
     frame.drop_outliers();
     last_frame_ = std::make_unique<Frame>(frame);

@@ -25,7 +25,8 @@ const char* kBase =
 TEST(FrontOptions, TrackingAndMappingSectionsOverrideDefaults) {
   const std::string text = std::string(kBase) +
                            "ORBextractor.nFeatures: 1500\ntracking:\n  short_term_seconds: 1.5\n  match_th_low: 40\n"
-                           "  pose_solver: lm\nmapping:\n  ba_max_keyframes: 7\n  keyframe_culling: false\n  inline_busy_seconds: 0.05\n  min_parallax_deg_mono: 2.5\n";
+                           "  pose_solver: lm\nmapping:\n  ba_max_keyframes: 7\n  keyframe_culling: false\n  inline_busy_seconds: 0.05\n  min_parallax_deg_mono: 2.5\n"
+                           "  sequence_time_for_mapper: false\n  abort_ba_when_behind: false\n  ba_max_keyframes_mono: 15\n";
   const FrontOptions o = load_front_options(io::parse_settings(text, "t.yaml"));
   EXPECT_EQ(o.orb.n_features, 1500);
   EXPECT_DOUBLE_EQ(o.tracking.short_term_seconds, 1.5);
@@ -34,6 +35,11 @@ TEST(FrontOptions, TrackingAndMappingSectionsOverrideDefaults) {
   EXPECT_FALSE(o.mapping.keyframe_culling);
   EXPECT_DOUBLE_EQ(o.mapping.inline_busy_seconds, 0.05);
   EXPECT_DOUBLE_EQ(o.mapping.min_parallax_deg_mono, 2.5);
+  EXPECT_FALSE(o.mapping.sequence_time_for_mapper);
+  EXPECT_TRUE(FrontOptions{}.mapping.sequence_time_for_mapper);
+  EXPECT_FALSE(o.mapping.abort_ba_when_behind);
+  EXPECT_EQ(o.mapping.ba_max_keyframes_mono, 15);
+  EXPECT_EQ(o.mapping.ba_max_fixed_keyframes_mono, FrontOptions{}.mapping.ba_max_fixed_keyframes_mono);
   EXPECT_EQ(o.tracking.pose_rounds, FrontOptions{}.tracking.pose_rounds);
   EXPECT_EQ(o.tracking.pose_solver, "lm");
   EXPECT_EQ(FrontOptions{}.tracking.pose_solver, "ceres");
@@ -68,6 +74,7 @@ TEST(FrontOptions, InvalidValuesNameTheKey) {
   expect_error("mapping:\n  redundant_ratio: 1.5\n", "mapping.redundant_ratio");
   expect_error("mapping:\n  inline_busy_seconds: -0.1\n", "mapping.inline_busy_seconds");
   expect_error("mapping:\n  min_parallax_deg_mono: 95\n", "mapping.min_parallax_deg_mono");
+  expect_error("mapping:\n  ba_max_keyframes_mono: 0\n", "mapping.ba_max_keyframes_mono");
 }
 
 }  // namespace wardmap::slam

@@ -4,6 +4,7 @@
 #include "slam/front/bounded_queue.h"
 #include "slam/front/front_process.h"
 #include "slam/front/keyframe_policy.h"
+#include "slam/front/local_bundle_adjustment.h"
 #include "slam/front/submap.h"
 #include "slam/front/triangulation.h"
 #include "tests/slam/front/test_images.h"
@@ -63,6 +64,45 @@ TEST(Submap, ObservationsBuildTheCovisibilityGraph) {
   // The origin is never culled.
   map.erase_keyframe(kfs[0]);
   EXPECT_FALSE(kfs[0]->bad());
+}
+
+// Local BA asks `abort` after every solver iteration; true ends the solve there and skips the
+// refinement (ORB-SLAM's local BA stopping for a waiting keyframe).
+TEST(LocalBundleAdjustment, StopsAtTheIterationWhereAbortIsAsked) {
+  const auto run = [](const std::function<bool()>& abort) {
+    Submap map(0);
+    std::vector<std::shared_ptr<KeyFrame>> kfs;
+    for (int k = 0; k < 4; ++k) {
+      Frame f(static_cast<std::uint64_t>(k), k * 0.1, features());
+      f.set_pose_cw(SE3(Eigen::Quaterniond::Identity(), Eigen::Vector3d(-0.05 * k, 0.01 * (k % 2), 0)));
+      kfs.push_back(map.create_keyframe(f));
+    }
+    // Points at 2 m on the rays of kf0's keypoints, seen at the same keypoints by every keyframe:
+    // the other keyframes' observations disagree with them, so the solver has work to do.
+    const FrameFeatures& f = *features();
+    for (size_t i = 0; i < std::min<size_t>(80, f.points.size()); ++i) {
+      auto mp = map.create_map_point(camera().unproject(f.points[i]) * 2.0, *kfs[0]);
+      for (auto& kf : kfs) {
+        mp->add_observation(kf, static_cast<int>(i));
+        kf->set_map_point(i, mp);
+      }
+    }
+    for (auto& kf : kfs) kf->update_connections();
+    FrontOptions o;
+    return local_bundle_adjustment(kfs.back(), map, camera(), o, nullptr, abort);
+  };
+  const LocalBAResult full = run({});
+  EXPECT_FALSE(full.aborted);
+  EXPECT_LT(full.final_cost, full.initial_cost);
+  int asked = 0;
+  const LocalBAResult cut = run([&asked] { return ++asked >= 1; });
+  EXPECT_TRUE(cut.aborted);
+  EXPECT_EQ(asked, 1);  // one iteration of the robust pass, no refinement
+  int never = 0;
+  const LocalBAResult kept = run([&never] { ++never; return false; });
+  EXPECT_FALSE(kept.aborted);
+  EXPECT_GT(never, 1);  // asked at every iteration of both passes
+  EXPECT_DOUBLE_EQ(kept.final_cost, full.final_cost);
 }
 
 TEST(Submap, ReplacingAPointMovesItsObservations) {
