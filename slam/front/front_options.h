@@ -103,7 +103,8 @@ struct MappingOptions {
   // after it was made (offline input arrives faster than a camera's; the map must keep up).
   int max_lag_frames = 3;                  // mapping.max_lag_frames
   // Threaded: while the mapper is busy, the tracker waits for it until the wall time since the last
-  // keyframe equals the sequence time since it (what a live camera would give it), not longer.
+  // keyframe was made equals the sequence time since that keyframe's frame, not longer: about what a
+  // live camera gives it (live, the keyframe frame's own tracking time also counts against it).
   bool sequence_time_for_mapper = true;    // mapping.sequence_time_for_mapper
   // Threaded: local BA stops at the iteration where a new keyframe is waiting (ORB-SLAM's abort flag).
   bool abort_ba_when_behind = true;        // mapping.abort_ba_when_behind

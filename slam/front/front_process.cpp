@@ -51,8 +51,8 @@ FrameResult FrontProcess::process(const io::Frame& in) {
     wait_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - wait_start).count();
   };
   // A live camera gives the mapper the sequence time between frames; offline input arrives faster.
-  // The mapper gets that time here (it is never waited for longer), so that the keyframes a threaded
-  // run makes do not depend on how fast the frames are read.
+  // The mapper gets that time here, counted from when the keyframe was made (it is never waited for
+  // longer), so that the keyframes a threaded run makes do not depend on how fast frames are read.
   if (threaded && options_.mapping.sequence_time_for_mapper && keyframe_timestamp_ >= 0 && !mapper_.idle()) {
     const double budget = (in.timestamp - keyframe_timestamp_) -
                           std::chrono::duration<double>(std::chrono::steady_clock::now() - keyframe_clock_).count();
