@@ -105,12 +105,13 @@ void LocalMapper::process(const std::shared_ptr<KeyFrame>& kf) {
   else ++stats_.deferred;
   lap(stats_.t_fuse);
   if (!behind()) {
-    if (submap_->num_keyframes() > 2)
+    if (submap_->num_keyframes() > 2) {
       stats_.last_ba = local_bundle_adjustment(kf, *submap_, camera_, options_, lock.owns_lock() ? &lock : nullptr,
                                                options_.mapping.abort_ba_when_behind
                                                    ? std::function<bool()>([&] { return behind() || interrupt_ba_; })
                                                    : std::function<bool()>());
-    if (stats_.last_ba.aborted) ++stats_.ba_aborted;
+      if (stats_.last_ba.aborted) ++stats_.ba_aborted;
+    }
     lap(stats_.t_ba);
     if (options_.mapping.keyframe_culling) cull_keyframes(kf);
     lap(stats_.t_cull_keyframes);
