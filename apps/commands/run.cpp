@@ -89,8 +89,9 @@ void add_run_command(CLI::App& app) {
   cmd->add_flag("--objects", a->objects, "With --poses slam: also map the objects on the SLAM's keyframes (needs --out)");
   cmd->add_flag("--deterministic", a->deterministic, "Byte-identical output on reruns: local mapping runs on the tracking thread instead of its own");
   cmd->add_flag("--realtime", a->realtime,
-                "Feed the frames at the sequence's own rate (their timestamps), as a live camera would: the mapper\n"
-                "thread then has the time per frame it would have live (offline input otherwise arrives several times faster)")
+                "Feed the frames at the sequence's own rate (their timestamps), as a live camera would. Without it\n"
+                "frames are read as fast as they are tracked, and the tracker gives a busy mapper the\n"
+                "sequence time since the last keyframe (mapping.sequence_time_for_mapper)")
       ->excludes("--deterministic");
   add_semantic_options(cmd, a->job);
   cmd->callback([a] { run(*a); });
