@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 
 namespace wardmap::slam {
 
@@ -45,9 +46,11 @@ FrameResult FrontProcess::process(const io::Frame& in) {
   const auto extracted = std::chrono::steady_clock::now();
   const bool threaded = mapper_.threaded();
   double wait_seconds = 0;  // reported apart from the frame's own time (FrameResult::wait_seconds)
-  const auto wait_for_mapper = [this, &wait_seconds] {
+  // Waits until the mapper is idle, or for at most `budget` seconds when one is given.
+  const auto wait_for_mapper = [this, &wait_seconds](std::optional<double> budget = std::nullopt) {
     const auto wait_start = std::chrono::steady_clock::now();
-    mapper_.wait_idle();
+    if (budget) mapper_.wait_idle_for(*budget);
+    else mapper_.wait_idle();
     wait_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - wait_start).count();
   };
   // A live camera gives the mapper the sequence time between frames; offline input arrives faster.
@@ -56,11 +59,7 @@ FrameResult FrontProcess::process(const io::Frame& in) {
   if (threaded && options_.mapping.sequence_time_for_mapper && keyframe_timestamp_ >= 0 && !mapper_.idle()) {
     const double budget = (in.timestamp - keyframe_timestamp_) -
                           std::chrono::duration<double>(std::chrono::steady_clock::now() - keyframe_clock_).count();
-    if (budget > 0) {
-      const auto wait_start = std::chrono::steady_clock::now();
-      mapper_.wait_idle_for(budget);
-      wait_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - wait_start).count();
-    }
+    if (budget > 0) wait_for_mapper(budget);
   }
   if (threaded && frames_since_keyframe_ >= options_.mapping.max_lag_frames && !mapper_.idle()) wait_for_mapper();
   ++frames_since_keyframe_;
