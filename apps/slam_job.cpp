@@ -155,7 +155,7 @@ double run_slam_job(const SlamJob& job) {
                                   {"max", 1e3 * percentile(seconds, 1.0)}}},
                  // keyframes the threaded mapper registered without fusion, BA and culling (it was behind)
                  {"mapper_deferred_keyframes", front.mapper_stats().deferred},
-                 // local BAs the threaded mapper cut short: a new keyframe was waiting
+                 // local BAs the threaded mapper cut short: a keyframe was waiting or wanted by the tracker
                  {"mapper_aborted_bas", front.mapper_stats().ba_aborted},
                  // the tracker waiting for a threaded mapper still busy (the sequence time since the last
                  // keyframe, or mapping.max_lag_frames after it)
@@ -177,7 +177,7 @@ double run_slam_job(const SlamJob& job) {
                 1e3 * percentile(seconds, 0.95));
   md += buf;
   md += "- keyframes mapped without fusion, BA and culling (threaded mapper behind): " +
-        std::to_string(front.mapper_stats().deferred) + "\n- local BAs cut short (a new keyframe waiting): " +
+        std::to_string(front.mapper_stats().deferred) + "\n- local BAs cut short (a keyframe waiting or wanted): " +
         std::to_string(front.mapper_stats().ba_aborted) + "\n";
   std::snprintf(buf, sizeof buf, "- tracker waiting for the mapper (threaded, behind its time): %.1f s\n", wait_seconds);
   md += buf;

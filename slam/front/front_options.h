@@ -106,7 +106,8 @@ struct MappingOptions {
   // keyframe was made equals the sequence time since that keyframe's frame, not longer: about what a
   // live camera gives it (live, the keyframe frame's own tracking time also counts against it).
   bool sequence_time_for_mapper = true;    // mapping.sequence_time_for_mapper
-  // Threaded: local BA stops at the iteration where a new keyframe is waiting (ORB-SLAM's abort flag).
+  // Threaded: local BA stops at the iteration where a keyframe is waiting, or where the tracker wanted
+  // one while the mapper was busy (ORB-SLAM's abort flag and InterruptBA).
   bool abort_ba_when_behind = true;        // mapping.abort_ba_when_behind
   int triangulation_neighbours_mono = 20;  // mapping.triangulation_neighbours_mono
   // Monocular: a new point seen by fewer keyframes than this two keyframes after its creation is

@@ -31,7 +31,7 @@ struct LocalMapperStats {
   int culled_keyframes = 0;
   int fused = 0;
   int deferred = 0;  // keyframes mapped without fusion, BA and culling: the threaded mapper was behind
-  int ba_aborted = 0;  // local BAs cut short because a new keyframe was waiting (threaded)
+  int ba_aborted = 0;  // local BAs cut short: a keyframe waiting or wanted by the tracker (threaded)
   LocalBAResult last_ba;
   // Wall time spent per stage (seconds, summed over keyframes).
   double t_register = 0, t_cull = 0, t_triangulate = 0, t_fuse = 0, t_ba = 0, t_cull_keyframes = 0;
