@@ -109,6 +109,29 @@ double AssociationModel::log_mixture_prior(int item_object, const std::vector<hd
   return best;
 }
 
+// A landmark is one object in one place: the spread of its group objects' mean positions about
+// their mean, as Gaussians of sigma_position (unnormalised), weighted by compactness_weight. Two
+// half-landmarks (early views of one chair, late views of its neighbour) then score badly.
+double AssociationModel::log_marginal(const std::vector<hdp::ItemRef>& members) const {
+  double lm = hdp::CrfModel::log_marginal(members);
+  if (options_.compactness_weight <= 0) return lm;
+  std::vector<Eigen::Vector3d> means;
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const auto& m : members) {
+    const GroupObject& b = object(m);
+    if (b.features.empty()) continue;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& f : b.features) mean += f.head<3>();
+    means.push_back(mean / b.features.size());
+    c += means.back();
+  }
+  if (means.size() < 2) return lm;
+  c /= means.size();
+  double ss = 0;
+  for (const auto& m : means) ss += (m - c).squaredNorm();
+  return lm - options_.compactness_weight * 0.5 * ss / (options_.sigma_position * options_.sigma_position);
+}
+
 double AssociationModel::log_predictive_new(const hdp::ItemRef&) const { return log_new_; }
 
 bool AssociationModel::cannot_link(const hdp::ItemRef& a, const hdp::ItemRef& b) const {

@@ -37,6 +37,9 @@ class AssociationModel : public hdp::CrfModel {
 
   double log_predictive(const hdp::ItemRef& item, const std::vector<hdp::ItemRef>& dish_members) const override;
   double log_predictive_new(const hdp::ItemRef& item) const override;
+  // The chain rule over the members (CrfModel's), less the spread of the members' mean positions
+  // when options.compactness_weight > 0. Scores whole states only (MAP choice, suffix swaps).
+  double log_marginal(const std::vector<hdp::ItemRef>& members) const override;
   // Different classes, or different measurements in one keyframe (two detections at once are two
   // objects).
   bool cannot_link(const hdp::ItemRef& a, const hdp::ItemRef& b) const override;

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "hdp/crf_sampler.h"
+#include "hdp/suffix_swap.h"
 #include "mot/tracker.h"
 #include "semantics/pose_selection.h"
 
@@ -205,7 +206,10 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
 
   // Level 2: HDP across groups.
   t0 = std::chrono::steady_clock::now();
-  AssociationModel model(objects, items, options.association);
+  // The sampler's MAP choice scores states without the landmark compactness (suffix swaps only).
+  AssociationOptions model_options = options.association;
+  model_options.compactness_weight = 0;
+  AssociationModel model(objects, items, model_options);
   std::vector<int> sizes;
   for (const auto& g : items) sizes.push_back(static_cast<int>(g.size()));
   hdp::CrfOptions crf = options.association.crf;
@@ -234,8 +238,14 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   size_t best = 0;
   for (size_t c = 1; c < results.size(); ++c)
     if (results[c].log_joint > results[best].log_joint) best = c;
-  const hdp::CrfResult result = std::move(results[best]);
+  hdp::CrfResult result = std::move(results[best]);
   r.hdp_log_joint = result.log_joint;
+  if (options.association.suffix_swaps && !hdp_only) {
+    hdp::SuffixSwapOptions so;
+    so.min_gain = options.association.suffix_swap_min_gain;
+    const AssociationModel swap_model(objects, items, options.association);
+    hdp::improve_by_suffix_swaps(swap_model, result.dish, result.num_dishes, so);
+  }
   r.hdp_seconds = seconds_since(t0);
   t0 = std::chrono::steady_clock::now();
 

@@ -45,6 +45,8 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(association.sigma_rotation, 1e-3, 10, "association.sigma_rotation");
   c(association.overlap_boost, 1, 100, "association.overlap_boost");
   c(association.new_landmark_distance, 1e-3, 100, "association.new_landmark_distance");
+  c(association.compactness_weight, 0, 100, "association.compactness_weight");
+  c(association.suffix_swap_min_gain, 0, 1e6, "association.suffix_swap_min_gain");
   c(association.appearance_weight, 0, 100, "association.appearance_weight");
   c(association.appearance_neutral, -1, 1, "association.appearance_neutral");
   c(association.min_measurements, 1, 10000, "association.min_measurements");
@@ -117,6 +119,9 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(a, "semantics.association", "sigma_rotation", o.association.sigma_rotation, file);
   read_option(a, "semantics.association", "overlap_boost", o.association.overlap_boost, file);
   read_option(a, "semantics.association", "landmark_mixture", o.association.landmark_mixture, file);
+  read_option(a, "semantics.association", "compactness_weight", o.association.compactness_weight, file);
+  read_option(a, "semantics.association", "suffix_swaps", o.association.suffix_swaps, file);
+  read_option(a, "semantics.association", "suffix_swap_min_gain", o.association.suffix_swap_min_gain, file);
   read_option(a, "semantics.association", "new_landmark_distance", o.association.new_landmark_distance, file);
   read_option(a, "semantics.association", "appearance_weight", o.association.appearance_weight, file);
   read_option(a, "semantics.association", "appearance_neutral", o.association.appearance_neutral, file);

@@ -115,10 +115,12 @@ TEST(Association, MotFollowsIdenticalNeighboursThroughAQuickPanWithTheKeyframePo
 }
 
 TEST(Association, HierarchicalSeparatesIdenticalNeighbours) {
-  for (unsigned seed : {1u, 2u, 3u}) {
+  for (unsigned seed : {1u, 2u, 3u, 4u}) {
     const auto ms = passing_doors(seed);
     SemanticOptions o;
     o.association.crf.seed = seed;
+    // The suffix swaps (off by default) keep a right state right.
+    if (seed == 4) o.association.suffix_swaps = true, o.association.compactness_weight = 1.0;
     const AssociationResult r = associate_objects(ms, groups_of(40, o.groups.size, o.groups.overlap), o);
     EXPECT_EQ(r.landmarks.size(), 3u) << "seed " << seed;
     EXPECT_DOUBLE_EQ(accuracy(ms, r), 1.0) << "seed " << seed;
@@ -186,26 +188,28 @@ TEST(Association, ClassesNeverShareALandmark) {
     for (int id : l.measurements) EXPECT_EQ(ms[id].label, l.label);
 }
 
+// A chair group object of group `id` with one measurement at x.
+GroupObject chair_object(int id, double x) {
+  GroupObject g;
+  g.group = id;
+  g.label = "chair";
+  g.measurements = {id};
+  g.keyframe_measurements = {{id, id}};
+  g.features = {pose_feature(ObjectPose{slam::SE3(Eigen::Quaterniond::Identity(), Eigen::Vector3d(x, 0, 0.4)),
+                                        Eigen::Vector3d(0.5, 0.5, 0.85)})};
+  return g;
+}
+
 // A landmark's GMM is the mixture of its group objects' GMMs: one stray group object (measured on its
 // neighbour, 0.6 m away) weighs 1/N in it, so it cannot pull the neighbour's group objects in. With
 // the best single member's GMM (landmark_mixture: false) it would attract them fully.
 TEST(Association, StrayMemberWeighsOneNthOfTheLandmarkPrior) {
-  const auto object = [](int id, double x) {
-    GroupObject g;
-    g.group = id;
-    g.label = "chair";
-    g.measurements = {id};
-    g.keyframe_measurements = {{id, id}};
-    g.features = {pose_feature(ObjectPose{slam::SE3(Eigen::Quaterniond::Identity(), Eigen::Vector3d(x, 0, 0.4)),
-                                          Eigen::Vector3d(0.5, 0.5, 0.85)})};
-    return g;
-  };
   // Objects 0-4 at x = 0 and a stray 5 at x = 0.6 form landmark A; 6-10 at x = 0.6 form B; 11 is
   // the item, at x = 0.6.
   std::vector<GroupObject> objects;
   std::vector<std::vector<int>> groups;
   for (int i = 0; i < 12; ++i) {
-    objects.push_back(object(i, i < 5 ? 0.0 : 0.6));
+    objects.push_back(chair_object(i, i < 5 ? 0.0 : 0.6));
     groups.push_back({i});
   }
   std::vector<hdp::ItemRef> a, b;
@@ -220,6 +224,43 @@ TEST(Association, StrayMemberWeighsOneNthOfTheLandmarkPrior) {
   o.landmark_mixture = false;
   const AssociationModel best_member(objects, groups, o);
   EXPECT_NEAR(best_member.log_predictive(item, b), best_member.log_predictive(item, a), 1e-9);
+}
+
+// The score of a whole landmark (the suffix swaps' criterion) loses the spread of its group objects'
+// positions, as Gaussians of sigma_position, times compactness_weight: three chairs at x = 0 and
+// two at x = 0.6 (two half-landmarks) lose 0.5 * sum |x - mean|^2 / sigma^2; five at one place lose nothing.
+TEST(Association, CompactnessWeighsTheSpreadOfALandmark) {
+  std::vector<GroupObject> objects;
+  std::vector<std::vector<int>> groups;
+  for (int i = 0; i < 10; ++i) {
+    objects.push_back(chair_object(i, i < 3 || i >= 5 ? 0.0 : 0.6));
+    groups.push_back({i});
+  }
+  std::vector<hdp::ItemRef> split, together;
+  for (int i = 0; i < 5; ++i) split.push_back({i, 0});
+  for (int i = 5; i < 10; ++i) together.push_back({i, 0});
+  AssociationOptions o;
+  const AssociationModel plain(objects, groups, o);
+  o.compactness_weight = 1.0;
+  const AssociationModel compact(objects, groups, o);
+  const double mean = 2 * 0.6 / 5, ss = 3 * mean * mean + 2 * (0.6 - mean) * (0.6 - mean);
+  EXPECT_NEAR(compact.log_marginal(split) - plain.log_marginal(split), -0.5 * ss / std::pow(o.sigma_position, 2), 1e-9);
+  EXPECT_NEAR(compact.log_marginal(together), plain.log_marginal(together), 1e-9);
+}
+
+// The suffix-swap keys load over the defaults; a bad value is named in the error.
+TEST(Association, SuffixSwapKeysLoadAndABadOneIsNamed) {
+  const auto o = load_semantic_options(
+      YAML::Load("association: {suffix_swaps: false, suffix_swap_min_gain: 2.5, compactness_weight: 0.5}"), "s.yaml");
+  EXPECT_FALSE(o.association.suffix_swaps);
+  EXPECT_DOUBLE_EQ(o.association.suffix_swap_min_gain, 2.5);
+  EXPECT_DOUBLE_EQ(o.association.compactness_weight, 0.5);
+  try {
+    load_semantic_options(YAML::Load("association: {compactness_weight: -1}"), "s.yaml");
+    ADD_FAILURE() << "a negative compactness_weight was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("association.compactness_weight"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
