@@ -50,24 +50,35 @@ struct OccluderMask {
   bool by_box = true;
   slam::SE3 world_to_box;
   Eigen::Vector3d half_size;
+  double far_depth = -1;  // > 0: every pixel of the image box no deeper than this (camera z) is hidden
 };
 
-std::vector<OccluderMask> occluder_masks(const std::vector<Occluder>& occluders, double inflate) {
+std::vector<OccluderMask> occluder_masks(const std::vector<Occluder>& occluders, double inflate,
+                                        const slam::SE3& T_wc, const std::string& far_end) {
   std::vector<OccluderMask> masks;
   for (const auto& o : occluders) {
     OccluderMask m{o.box, !o.pose, {}, Eigen::Vector3d::Zero()};
     if (o.pose) m.world_to_box = o.pose->pose.inverse(), m.half_size = 0.5 * o.pose->size.array() + inflate;
+    if (o.pose && (far_end == "all" || (far_end == "same_class" && o.same_class))) {
+      const slam::SE3 T_cb = T_wc.inverse() * o.pose->pose;
+      for (int c = 0; c < 8; ++c) {
+        const Eigen::Vector3d corner((c & 1 ? 1 : -1) * m.half_size(0), (c & 2 ? 1 : -1) * m.half_size(1),
+                                     (c & 4 ? 1 : -1) * m.half_size(2));
+        m.far_depth = std::max(m.far_depth, (T_cb * corner).z());
+      }
+    }
     masks.push_back(m);
   }
   return masks;
 }
 
 // Whether the world point of pixel (x, y) is hidden by one of the occluders.
-bool hidden_by(const std::vector<OccluderMask>& masks, int x, int y, const Eigen::Vector3d& p_world) {
+bool hidden_by(const std::vector<OccluderMask>& masks, int x, int y, const Eigen::Vector3d& p_world, double z = -1) {
   for (const auto& m : masks) {
     const auto& b = m.box;
     if (x < b(0) || x > b(2) || y < b(1) || y > b(3)) continue;
     if (m.by_box) return true;
+    if (m.far_depth > 0 && z > 0 && z <= m.far_depth) return true;
     if (((m.world_to_box * p_world).cwiseAbs().array() <= m.half_size.array()).all()) return true;
   }
   return false;
@@ -93,7 +104,7 @@ bool bottom_occluded(const cv::Mat& depth, const slam::PinholeCamera& cam, const
   for (int x = x0; x <= x1; x += step, ++total)
     for (int y : rows) {
       const double z = depth.at<float>(y, x);
-      if (z > 0 && hidden_by(masks, x, y, T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z))) {
+      if (z > 0 && hidden_by(masks, x, y, T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z), z)) {
         ++hidden;
         break;
       }
@@ -124,7 +135,7 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   cut.left = box(0) <= m, cut.top = box(1) <= m;
   cut.right = box(2) >= depth.cols - 1 - m, cut.bottom = box(3) >= depth.rows - 1 - m;
   // Hidden at the bottom by a nearer detection: completed as a bottom cut is.
-  const std::vector<OccluderMask> masks = occluder_masks(occluders, o.occluder_inflate);
+  const std::vector<OccluderMask> masks = occluder_masks(occluders, o.occluder_inflate, T_wc, o.mask_to_far_end);
   if (sized && o.occluded_bottom_share <= 1 && bottom_occluded(depth, cam, T_wc, box, masks, o.occluded_bottom_share))
     cut.bottom = true;
   const bool completes = sized && o.complete_depth_with_class_size;
@@ -152,7 +163,7 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
       const double z = row[x];
       if (!(z >= o.min_depth && z <= o.max_depth)) continue;
       const Eigen::Vector3d p = T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z);
-      if (hidden_by(masks, x, y, p)) continue;
+      if (hidden_by(masks, x, y, p, z)) continue;
       samples.push_back({z, p, x});
     }
   }
@@ -409,7 +420,8 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
         if (!done[i] && (next < 0 || z[i] < z[next])) next = static_cast<int>(i);
     std::vector<Occluder> occluders;
     for (int j : nearer[next])
-      occluders.push_back({boxes[j], done[j] && !options.box_masked_classes.count(labels[j]) ? poses[j] : std::nullopt});
+      occluders.push_back({boxes[j], done[j] && !options.box_masked_classes.count(labels[j]) ? poses[j] : std::nullopt,
+                           labels[j] == labels[next]});
     poses[next] = measure_pose_from_depth(depth, camera, T_wc, boxes[next], up, labels[next], options, occluders);
     done[next] = true;
   }

@@ -71,6 +71,9 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(monocular.min_scale_estimates, 1, 100000, "monocular.min_scale_estimates");
   if (c.err.tellp() == 0 && association.mode != "hierarchical" && association.mode != "hdp-only")
     c.err << "key 'semantics.association.mode': must be hierarchical or hdp-only, got '" << association.mode << "'";
+  const auto& far_end = measurement.mask_to_far_end;
+  if (c.err.tellp() == 0 && far_end != "none" && far_end != "same_class" && far_end != "all")
+    c.err << "key 'semantics.measurement.mask_to_far_end': must be none, same_class or all, got '" << far_end << "'";
   if (c.err.tellp() != 0) return c.err.str();
   if (auto e = association.crf.validate()) return "key 'semantics.association.crf': " + *e;
   if (auto e = tracker.validate()) return "key 'semantics.tracker': " + *e;
@@ -112,6 +115,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(m, "semantics.measurement", "tall_class_ratio", o.measurement.tall_class_ratio, file);
   read_option(m, "semantics.measurement", "tall_depth_ratio", o.measurement.tall_depth_ratio, file);
   read_option(m, "semantics.measurement", "ambiguous_pair_iou", o.measurement.ambiguous_pair_iou, file);
+  read_option(m, "semantics.measurement", "mask_to_far_end", o.measurement.mask_to_far_end, file);
   read_option(g, "semantics.groups", "size", o.groups.size, file);
   read_option(g, "semantics.groups", "overlap", o.groups.overlap, file);
   read_option(a, "semantics.association", "mode", o.association.mode, file);

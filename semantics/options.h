@@ -67,6 +67,9 @@ struct MeasurementOptions {
   // Above 1: off (0.6 was mixed on the six seed-1 aisle_straight runs: quick 88.7-96.3 -> 94.8-99.3 %,
   // slow 97.7-99.7 -> 93.5-99.4 %).
   double ambiguous_pair_iou = 2.0;
+  // Inside a measured occluder's image box, also hide every pixel no deeper than the far end of its
+  // inflated 3-D box: "none", "same_class" (occluders of the measured detection's class) or "all".
+  std::string mask_to_far_end = "none";
 };
 
 // Keyframe groups (Assoc. III-A.1): M adjacent keyframes, j shared with the next group. The paper

@@ -1,8 +1,10 @@
 // Object pose from depth (Assoc. Eq. 1) on rendered depth of known boxes.
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include "tests/support/test_camera.h"
 #include "semantics/object_measurement.h"
+#include "semantics/options.h"
 
 namespace wardmap::semantics {
 namespace {
@@ -189,6 +191,52 @@ TEST(Measurement, MeasuredOccluderHidesOnlyItsOwnPixels) {
   EXPECT_GT(poses[1]->pose.translation().x(), (380 - 319.5) / 500.0 * 4.0);
   // Were the bed not measured, its whole box would hide the cabinet: no pose rather than a wrong one.
   EXPECT_FALSE(measure_pose_from_depth(d, camera(), slam::SE3(), boxes[1], up, "cabinet", o, {{boxes[0], std::nullopt}}));
+}
+
+// Pixels inside a measured occluder's image box that lie outside its inflated 3-D box (a part its
+// measurement missed) but no deeper than that box's far end are the occluder's too, with
+// mask_to_far_end: the far cabinet is then measured on its own face, not on that part.
+TEST(Measurement, FarEndMaskHidesAnOccludersPixelsOutsideItsMeasuredBox) {
+  SemanticOptions o;
+  const Eigen::Vector3d up(0, -1, 0);
+  // Far cabinet face at 4 m over [200, 295); the near one's unmeasured part at 3.3 m over [295, 340).
+  cv::Mat d = scene(8.0, 4.0, 200, 295, 200, 320);
+  d(cv::Rect(295, 200, 45, 120)).setTo(3.3);
+  const Eigen::Vector4d far_box(260, 200, 340, 320), near_box(290, 200, 420, 330);
+  // The near cabinet as measured: centred 0.5 m right at 3.2 m, so its inflated box spans x 0.2-0.8 m
+  // and depths up to 3.525 m; the 3.3 m part lies left of it (x < 0.13 m).
+  const ObjectPose near{slam::SE3(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.5, 0, 3.2)), Eigen::Vector3d(0.4, 0.8, 0.45)};
+  const Occluder occluder{near_box, near, true};
+  o.measurement.mask_to_far_end = "none";
+  const auto kept = measure_pose_from_depth(d, camera(), slam::SE3(), far_box, up, "cabinet", o, {occluder});
+  ASSERT_TRUE(kept);
+  EXPECT_NEAR(kept->pose.translation().z(), 3.3 + 0.225, 0.05);  // on the near cabinet's part
+  o.measurement.mask_to_far_end = "same_class";
+  const auto masked = measure_pose_from_depth(d, camera(), slam::SE3(), far_box, up, "cabinet", o, {occluder});
+  ASSERT_TRUE(masked);
+  EXPECT_NEAR(masked->pose.translation().z(), 4.0 + 0.225, 0.05);
+  // An occluder of another class is masked only by its 3-D box under same_class, by its far end under all.
+  const Occluder other{near_box, near, false};
+  const auto same_only = measure_pose_from_depth(d, camera(), slam::SE3(), far_box, up, "cabinet", o, {other});
+  ASSERT_TRUE(same_only);
+  EXPECT_NEAR(same_only->pose.translation().z(), 3.3 + 0.225, 0.05);
+  o.measurement.mask_to_far_end = "all";
+  const auto all = measure_pose_from_depth(d, camera(), slam::SE3(), far_box, up, "cabinet", o, {other});
+  ASSERT_TRUE(all);
+  EXPECT_NEAR(all->pose.translation().z(), 4.0 + 0.225, 0.05);
+}
+
+// The key loads over the default; an unknown value is named in the error.
+TEST(Measurement, FarEndMaskKeyLoadsAndABadValueIsNamed) {
+  EXPECT_EQ(SemanticOptions().measurement.mask_to_far_end, "none");
+  const auto o = load_semantic_options(YAML::Load("measurement: {mask_to_far_end: all}"), "s.yaml");
+  EXPECT_EQ(o.measurement.mask_to_far_end, "all");
+  try {
+    load_semantic_options(YAML::Load("measurement: {mask_to_far_end: near}"), "s.yaml");
+    ADD_FAILURE() << "an unknown mask_to_far_end was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("semantics.measurement.mask_to_far_end"), std::string::npos) << e.what();
+  }
 }
 
 // A door cut by the image's bottom border is completed from its class height: its top is real, the
