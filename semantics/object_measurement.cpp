@@ -60,12 +60,9 @@ std::vector<OccluderMask> occluder_masks(const std::vector<Occluder>& occluders,
     OccluderMask m{o.box, !o.pose, {}, Eigen::Vector3d::Zero()};
     if (o.pose) m.world_to_box = o.pose->pose.inverse(), m.half_size = 0.5 * o.pose->size.array() + inflate;
     if (o.pose && (far_end == "all" || (far_end == "same_class" && o.same_class))) {
+      // The deepest corner: the centre's depth plus each half axis's reach along the optical axis.
       const slam::SE3 T_cb = T_wc.inverse() * o.pose->pose;
-      for (int c = 0; c < 8; ++c) {
-        const Eigen::Vector3d corner((c & 1 ? 1 : -1) * m.half_size(0), (c & 2 ? 1 : -1) * m.half_size(1),
-                                     (c & 4 ? 1 : -1) * m.half_size(2));
-        m.far_depth = std::max(m.far_depth, (T_cb * corner).z());
-      }
+      m.far_depth = T_cb.translation().z() + T_cb.rotation_matrix().row(2).cwiseAbs().dot(m.half_size);
     }
     masks.push_back(m);
   }
@@ -104,7 +101,7 @@ bool bottom_occluded(const cv::Mat& depth, const slam::PinholeCamera& cam, const
   for (int x = x0; x <= x1; x += step, ++total)
     for (int y : rows) {
       const double z = depth.at<float>(y, x);
-      if (z > 0 && hidden_by(masks, x, y, T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z), z)) {
+      if (z > 0 && hidden_by(masks, x, y, T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z))) {
         ++hidden;
         break;
       }
