@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "semantics/object_metrics.h"
 
@@ -109,6 +110,51 @@ bool bottom_occluded(const cv::Mat& depth, const slam::PinholeCamera& cam, const
   return total > 0 && hidden >= share * total;
 }
 
+// The height of the horizontal surface that the lowest rows of an object's points show (the bottom
+// `band` share of the trimmed rows y0..y1), when they show one rather than a face: over those rows,
+// the rows' median heights along `up` vary less than their median horizontal distances from the
+// camera (a bed's top seen from above). Fewer than 3 rows, or a face: none.
+std::optional<double> bottom_rows_top_height(const std::vector<std::pair<int, Eigen::Vector3d>>& points,
+                                             const Eigen::Vector3d& camera, const Eigen::Vector3d& up, int y0, int y1,
+                                             double band) {
+  const double from = y1 - band * (y1 - y0);
+  std::map<int, std::pair<std::vector<double>, std::vector<double>>> rows;  // row -> heights, distances
+  for (const auto& [y, p] : points) {
+    if (y < from) continue;
+    const Eigen::Vector3d d = p - camera;
+    rows[y].first.push_back(p.dot(up));
+    rows[y].second.push_back((d - d.dot(up) * up).norm());
+  }
+  if (rows.size() < 3) return std::nullopt;
+  std::vector<double> heights;
+  double h_lo = 1e9, h_hi = -1e9, d_lo = 1e9, d_hi = -1e9;
+  for (auto& [y, r] : rows) {
+    const double h = percentile(r.first, 0.5), d = percentile(r.second, 0.5);
+    heights.push_back(h);
+    h_lo = std::min(h_lo, h), h_hi = std::max(h_hi, h), d_lo = std::min(d_lo, d), d_hi = std::max(d_hi, d);
+  }
+  if (d_hi - d_lo <= h_hi - h_lo) return std::nullopt;
+  return percentile(heights, 0.5);
+}
+
+// Whether a surface at `height` (along `up`) fills the image rows from just below the box's bottom
+// edge to the image's bottom border (columns x0..x1): the object's top continues past a box that ends
+// a few pixels short of the border (detector boxes are a few pixels off), so the border cuts it.
+bool surface_reaches_bottom_border(const cv::Mat& depth, const slam::PinholeCamera& cam, const slam::SE3& T_wc,
+                                   const Eigen::Vector4d& box, int x0, int x1, const Eigen::Vector3d& up,
+                                   double height, double tolerance) {
+  const int first = std::max(0, static_cast<int>(std::ceil(box(3))) + 1);
+  std::vector<double> hs;
+  const int step = std::max(1, (x1 - x0) / 40);
+  for (int y = first; y < depth.rows; ++y)
+    for (int x = x0; x <= x1; x += step) {
+      const double z = depth.at<float>(y, x);
+      if (z > 0) hs.push_back((T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z)).dot(up));
+    }
+  if (hs.empty()) return first >= depth.rows;  // no rows below the box: it touches the border
+  return std::abs(percentile(hs, 0.5) - height) <= tolerance;
+}
+
 }  // namespace
 
 std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const slam::PinholeCamera& cam,
@@ -151,7 +197,7 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   struct Sample {
     double z;           // depth
     Eigen::Vector3d p;  // world point
-    int x;              // image column
+    int x, y;           // image column and row
   };
   std::vector<Sample> samples;
   for (int y = y0; y <= y1; y += stride) {
@@ -161,7 +207,7 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
       if (!(z >= o.min_depth && z <= o.max_depth)) continue;
       const Eigen::Vector3d p = T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z);
       if (hidden_by(masks, x, y, p, z)) continue;
-      samples.push_back({z, p, x});
+      samples.push_back({z, p, x, y});
     }
   }
   if (static_cast<int>(samples.size()) < o.min_points) return std::nullopt;
@@ -227,6 +273,22 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   }
   if (!o.complete_depth_with_class_size || !sized) return ObjectPose{slam::SE3(R, R * (0.5 * (lo + hi))), size};
   const auto& cs = class_size->second;
+  // A bottom cut is completed downwards as if it hid the object's lower part. When the lowest rows of
+  // the object's points show a horizontal surface instead (a bed's top seen from above as the camera
+  // passes close), the cut hides the object's near end, whose extent is unknown: no pose. A box that
+  // ends within bottom_cut_reach of its height above the border is cut there when that surface fills
+  // the rows below it. Only classes as long as bottom_face_min_length: a short top (a cabinet's) is
+  // mostly seen, and its completion stays close.
+  if (!thin && o.bottom_face_band > 0 && std::max(cs[0], cs[1]) >= o.bottom_face_min_length) {
+    std::vector<std::pair<int, Eigen::Vector3d>> rows;
+    for (size_t i = begin; i < end; ++i) rows.emplace_back(samples[i].y, samples[i].p);
+    if (const auto top = bottom_rows_top_height(rows, T_wc.translation(), z, y0, y1, o.bottom_face_band)) {
+      const bool near_border = box(3) >= depth.rows - 1 - std::max<double>(m, o.bottom_cut_reach * h);
+      if (cut.bottom || (near_border && surface_reaches_bottom_border(depth, cam, T_wc, box, x0, x1, z, *top,
+                                                                       o.top_surface_tolerance)))
+        return std::nullopt;
+    }
+  }
 
   if (thin && o.thin_height_from_box_rows) {
     // A thin class's lower part (legs, wheels, a base of spokes) gives few points and its top (a

@@ -32,6 +32,10 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(measurement.occluder_inflate, 0, 1, "measurement.occluder_inflate");
   c(measurement.thin_support, 0.001, 1, "measurement.thin_support");
   c(measurement.occluded_bottom_share, 0, 2, "measurement.occluded_bottom_share");
+  c(measurement.bottom_face_band, 0, 1, "measurement.bottom_face_band");
+  c(measurement.bottom_cut_reach, 0, 1, "measurement.bottom_cut_reach");
+  c(measurement.bottom_face_min_length, 0, 100, "measurement.bottom_face_min_length");
+  c(measurement.top_surface_tolerance, 0, 10, "measurement.top_surface_tolerance");
   c(measurement.support_containment, 0, 1, "measurement.support_containment");
   c(measurement.support_area_ratio, 1, 1e6, "measurement.support_area_ratio");
   c(measurement.max_depth, 0.01, 1000, "measurement.max_depth");
@@ -100,6 +104,10 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(m, "semantics.measurement", "support_area_ratio", o.measurement.support_area_ratio, file);
   read_option(m, "semantics.measurement", "thin_support", o.measurement.thin_support, file);
   read_option(m, "semantics.measurement", "occluded_bottom_share", o.measurement.occluded_bottom_share, file);
+  read_option(m, "semantics.measurement", "bottom_face_band", o.measurement.bottom_face_band, file);
+  read_option(m, "semantics.measurement", "bottom_cut_reach", o.measurement.bottom_cut_reach, file);
+  read_option(m, "semantics.measurement", "bottom_face_min_length", o.measurement.bottom_face_min_length, file);
+  read_option(m, "semantics.measurement", "top_surface_tolerance", o.measurement.top_surface_tolerance, file);
   read_option(m, "semantics.measurement", "thin_height_from_box_rows", o.measurement.thin_height_from_box_rows, file);
   read_option(m, "semantics.measurement", "min_depth", o.measurement.min_depth, file);
   read_option(m, "semantics.measurement", "max_depth", o.measurement.max_depth, file);

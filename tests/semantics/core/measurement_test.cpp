@@ -255,6 +255,84 @@ TEST(Measurement, BottomCutBoxIsCompletedFromTheClassHeight) {
   EXPECT_NEAR(p->size.z(), 2.05, 0.02);
 }
 
+// A bed seen from above as the camera passes close: a mattress 0.9 m below the camera from z = 1.5
+// to 3.5 m, 1 m wide, a headboard at z = 3.5, the floor 1.9 m below the camera. Rows from
+// `mattress_to` down show the floor instead of the mattress.
+cv::Mat bed_from_above(int mattress_to = 480) {
+  const double f = 500, top = 0.9, floor = 1.9;
+  cv::Mat d(480, 640, CV_32F, cv::Scalar(8.0f));
+  for (int v = 0; v < 480; ++v)
+    for (int u = 0; u < 640; ++u) {
+      const double a = (u - 319.5) / f, b = (v - 239.5) / f;
+      if (b * 3.5 >= 0.5 && b * 3.5 <= top && std::abs(a * 3.5) <= 0.5) d.at<float>(v, u) = 3.5f;
+      if (b <= 0) continue;
+      if (v >= mattress_to) {
+        d.at<float>(v, u) = static_cast<float>(floor / b);
+        continue;
+      }
+      const double z = top / b;  // the mattress plane y = top
+      if (z >= 1.5 && z <= 3.5 && std::abs(a * z) <= 0.5) d.at<float>(v, u) = static_cast<float>(z);
+    }
+  return d;
+}
+
+// The image's bottom border cuts the bed's top surface, hiding its near end (not its lower part):
+// its length and centre are unknown, so no pose. Without the rule (bottom_face_band 0) the cut is
+// completed downwards and the bed gets a pose.
+TEST(Measurement, BottomCutTopSurfaceGetsNoPose) {
+  SemanticOptions o;
+  o.measurement.bottom_face_band = 0.3;
+  const Eigen::Vector3d up(0, -1, 0);
+  const cv::Mat d = bed_from_above();
+  // At the bottom row the mattress is 1.88 m away: its sides at u = 319.5 -/+ 133.
+  const Eigen::Vector4d box(186, 311, 453, 479);
+  EXPECT_FALSE(measure_pose_from_depth(d, camera(), slam::SE3(), box, up, "bed", o));
+  o.measurement.bottom_face_band = 0;
+  EXPECT_TRUE(measure_pose_from_depth(d, camera(), slam::SE3(), box, up, "bed", o));
+}
+
+// A detector box ending 9 px short of the border: cut there when the mattress fills the rows below
+// it, not when they show the floor (the bed's near end is then in the box).
+TEST(Measurement, BoxEndingShortOfTheBorderIsCutWhenTheTopSurfaceContinues) {
+  SemanticOptions o;
+  o.measurement.bottom_face_band = 0.3;
+  const Eigen::Vector3d up(0, -1, 0);
+  const Eigen::Vector4d box(186, 311, 453, 470);
+  EXPECT_FALSE(measure_pose_from_depth(bed_from_above(), camera(), slam::SE3(), box, up, "bed", o));
+  EXPECT_TRUE(measure_pose_from_depth(bed_from_above(471), camera(), slam::SE3(), box, up, "bed", o));
+  // Beyond bottom_cut_reach (0.1 of the box's 159 px height) the box is taken as uncut.
+  o.measurement.bottom_cut_reach = 0.05;
+  EXPECT_TRUE(measure_pose_from_depth(bed_from_above(), camera(), slam::SE3(), box, up, "bed", o));
+}
+
+// The rule holds for long classes only: a class whose tops are shorter than bottom_face_min_length
+// (here the bed itself, with the limit raised past its 2 m) is completed as before.
+TEST(Measurement, TopSurfaceRuleSparesShortClasses) {
+  SemanticOptions o;
+  o.measurement.bottom_face_band = 0.3;
+  o.measurement.bottom_face_min_length = 2.5;
+  const Eigen::Vector3d up(0, -1, 0);
+  EXPECT_TRUE(measure_pose_from_depth(bed_from_above(), camera(), slam::SE3(), Eigen::Vector4d(186, 311, 453, 479), up,
+                                      "bed", o));
+}
+
+TEST(Measurement, TopSurfaceKeysLoadAndABadValueIsNamed) {
+  const auto o = load_semantic_options(
+      YAML::Load("measurement: {bottom_face_band: 0.25, bottom_cut_reach: 0.05, top_surface_tolerance: 0.2, "
+                 "bottom_face_min_length: 1.5}"),
+      "s.yaml");
+  EXPECT_DOUBLE_EQ(o.measurement.bottom_face_band, 0.25);
+  EXPECT_DOUBLE_EQ(o.measurement.bottom_cut_reach, 0.05);
+  EXPECT_DOUBLE_EQ(o.measurement.top_surface_tolerance, 0.2);
+  EXPECT_DOUBLE_EQ(o.measurement.bottom_face_min_length, 1.5);
+  try {
+    load_semantic_options(YAML::Load("measurement: {bottom_face_band: 2}"), "s.yaml");
+    ADD_FAILURE() << "bottom_face_band 2 was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("semantics.measurement.bottom_face_band"), std::string::npos) << e.what();
+  }
+}
+
 // A cabinet behind a bed: the bed hides the cabinet's lower half, so its visible part ends at the
 // bed, not at its own bottom. It is completed from the class height (0.8 m) down from its real top.
 TEST(Measurement, BottomOccludedBoxIsCompletedFromTheClassHeight) {
