@@ -51,7 +51,8 @@ struct Occluder {
 // (about `up`), the size the 5-95 % extents. With complete_depth_with_class_size, a centre seen
 // only from the front is pushed back by half the missing depth of the class's typical size, and a
 // box cut off by the image's top or bottom border is completed to the class's height from its
-// visible end. Returns no pose rather than a wrong one (a box cut at the left or right).
+// visible end, unless a long class shows its top there (seen from above, the cut hides its near
+// end). Returns no pose rather than a wrong one (a box cut at the left or right).
 std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const slam::PinholeCamera& camera,
                                                   const slam::SE3& T_wc, const Eigen::Vector4d& box,
                                                   const Eigen::Vector3d& up, const std::string& label,
