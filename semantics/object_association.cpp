@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
+#include <functional>
 #include <map>
 #include <thread>
 
@@ -37,6 +39,45 @@ GroupObject make_group_object(int group, const std::vector<int>& ids, const std:
   if (o.embedding.size() > 0 && o.embedding.norm() > 0) o.embedding.normalize();
   return o;
 }
+
+// Whether a world point lies inside a landmark's footprint (its box seen from above).
+bool inside_footprint(const ObjectPose& box, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d local = box.pose.inverse() * p;
+  return std::abs(local.x()) <= 0.5 * box.size.x() && std::abs(local.y()) <= 0.5 * box.size.y();
+}
+
+}  // namespace
+
+void merge_contained_landmarks(std::vector<ObjectLandmark>& landmarks,
+                               const std::function<void(ObjectLandmark&)>& place) {
+  // Strongest first (most measurements; the earlier on a tie): each landmark is tested against
+  // those before it that are still kept, with their poses after any merge.
+  std::vector<size_t> order(landmarks.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return landmarks[a].measurements.size() > landmarks[b].measurements.size();
+  });
+  std::vector<bool> gone(landmarks.size(), false);
+  for (size_t oi = 1; oi < order.size(); ++oi) {
+    ObjectLandmark& weak = landmarks[order[oi]];
+    for (size_t si = 0; si < oi; ++si) {
+      ObjectLandmark& strong = landmarks[order[si]];
+      if (gone[order[si]] || strong.label != weak.label || !inside_footprint(strong.pose, weak.pose.pose.translation()))
+        continue;
+      strong.measurements.insert(strong.measurements.end(), weak.measurements.begin(), weak.measurements.end());
+      std::sort(strong.measurements.begin(), strong.measurements.end());
+      place(strong);
+      gone[order[oi]] = true;
+      break;
+    }
+  }
+  std::vector<ObjectLandmark> kept;
+  for (size_t i = 0; i < landmarks.size(); ++i)
+    if (!gone[i]) kept.push_back(std::move(landmarks[i]));
+  landmarks = std::move(kept);
+}
+
+namespace {
 
 // Splits one MOT track (measurement ids in keyframe order) where its 3-D positions disagree: each
 // placed measurement joins the segment whose mean position is nearest within split_distance, or
@@ -265,25 +306,36 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   for (const auto& m : ms)
     if (dish_of[m.id] >= 0) dish_measurements[dish_of[m.id]].push_back(m.id);
 
-  for (int k = 0; k < result.num_dishes; ++k) {
+  // Reported landmarks: dishes with enough measurements, enough of them placed.
+  std::vector<ObjectLandmark> candidates;
+  const auto place = [&](ObjectLandmark& l) {
     std::vector<int> ids;
     std::vector<ObjectPose> poses;
-    for (int id : dish_measurements[k])
+    for (int id : l.measurements)
       if (ms[id].pose) {
         ids.push_back(id);
         poses.push_back(*ms[id].pose);
       }
-    if (static_cast<int>(dish_measurements[k].size()) < options.association.min_measurements ||
-        static_cast<int>(poses.size()) < options.association.min_placed_measurements || poses.empty())
-      continue;
-    ObjectLandmark l;
-    l.id = static_cast<int>(r.landmarks.size());
-    l.label = objects[dish_objects[k].front()].label;
-    l.measurements = dish_measurements[k];
     // Assoc. Eq. 4-6, or HDP-SLAM's first measurement.
     const int pick = hdp_only ? 0 : select_landmark_pose(poses, options.pose_selection);
     l.pose_measurement = ids[pick];
     l.pose = poses[pick];
+  };
+  for (int k = 0; k < result.num_dishes; ++k) {
+    int placed = 0;
+    for (int id : dish_measurements[k]) placed += ms[id].pose ? 1 : 0;
+    if (static_cast<int>(dish_measurements[k].size()) < options.association.min_measurements ||
+        placed < options.association.min_placed_measurements || placed == 0)
+      continue;
+    ObjectLandmark l;
+    l.label = objects[dish_objects[k].front()].label;
+    l.measurements = dish_measurements[k];
+    place(l);
+    candidates.push_back(std::move(l));
+  }
+  if (options.association.merge_contained && !hdp_only) merge_contained_landmarks(candidates, place);
+  for (auto& l : candidates) {
+    l.id = static_cast<int>(r.landmarks.size());
     for (int id : l.measurements) r.landmark_of[id] = l.id;
     r.landmarks.push_back(std::move(l));
   }

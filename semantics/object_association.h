@@ -4,6 +4,7 @@
 // runs no MOT, and keeps each landmark's first measurement pose.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "semantics/association_model.h"
@@ -32,6 +33,13 @@ struct AssociationResult {
   double hdp_log_joint = 0;  // log p(x, t, k) of the MAP state kept (the best chain's)
   double mot_seconds = 0, hdp_seconds = 0, pose_selection_seconds = 0;  // stage times
 };
+
+// Two objects of one class cannot stand in one place (association.merge_contained, our addition):
+// each landmark whose position lies inside the footprint (its box seen from above) of a same-class
+// landmark with more measurements is merged into it, and `place` chooses the merged landmark's
+// pose again. Landmarks keep their order; ids are left to the caller. Hierarchical mode only.
+void merge_contained_landmarks(std::vector<ObjectLandmark>& landmarks,
+                               const std::function<void(ObjectLandmark&)>& place);
 
 // Where the keyframes were taken: with it, MOT predicts a track's box in the next keyframe from the
 // camera's motion (groups.camera_motion); without it, from the Kalman filter's image velocity only.

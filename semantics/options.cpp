@@ -139,6 +139,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(a, "semantics.association", "appearance_neutral", o.association.appearance_neutral, file);
   read_option(a, "semantics.association", "min_measurements", o.association.min_measurements, file);
   read_option(a, "semantics.association", "min_placed_measurements", o.association.min_placed_measurements, file);
+  read_option(a, "semantics.association", "merge_contained", o.association.merge_contained, file);
   read_option(a, "semantics.association", "chains", o.association.chains, file);
   read_option(a, "semantics.association", "threads", o.association.threads, file);
   read_option(m, "semantics.measurement", "max_size_ratio", o.measurement.max_size_ratio, file);

@@ -2,6 +2,7 @@
 // known identities (no images: boxes, poses and embeddings made up).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <map>
 #include <random>
@@ -257,6 +258,50 @@ TEST(Association, SuffixSwapKeysLoadAndABadOneIsNamed) {
   EXPECT_DOUBLE_EQ(o.association.suffix_swap_min_gain, 2.5);
   EXPECT_DOUBLE_EQ(o.association.compactness_weight, 0.5);
   test::expect_load_error_names("association: {compactness_weight: -1}", "association.compactness_weight");
+}
+
+// A landmark inside the footprint of a same-class landmark with more measurements joins it, and the
+// merged landmark's pose is chosen again; one just outside it, or of another class, stays.
+ObjectLandmark landmark_at(const std::string& label, double x, double y, int first_id, int count) {
+  ObjectLandmark l;
+  l.label = label;
+  l.pose = ObjectPose{slam::SE3(Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ())), Eigen::Vector3d(x, y, 0.4)),
+                      Eigen::Vector3d(0.5, 0.5, 0.85)};
+  for (int i = 0; i < count; ++i) l.measurements.push_back(first_id + i);
+  return l;
+}
+
+TEST(Association, LandmarkInsideAStrongerOneOfItsClassJoinsIt) {
+  std::vector<ObjectLandmark> ls = {landmark_at("chair", 0.12, 0.10, 100, 4),     // inside the next one
+                                    landmark_at("chair", 0.0, 0.0, 0, 10),
+                                    landmark_at("chair", 0.0, 0.45, 200, 5),      // beyond its 0.25 m half-width
+                                    landmark_at("cabinet", 0.05, 0.0, 300, 3)};   // another class
+  std::vector<size_t> placed_sizes;
+  merge_contained_landmarks(ls, [&](ObjectLandmark& l) {
+    placed_sizes.push_back(l.measurements.size());
+    l.pose_measurement = l.measurements.front();
+  });
+  ASSERT_EQ(ls.size(), 3u);
+  EXPECT_EQ(ls[0].measurements.size(), 14u);  // the order of the others is kept
+  EXPECT_TRUE(std::is_sorted(ls[0].measurements.begin(), ls[0].measurements.end()));
+  EXPECT_EQ(ls[0].pose_measurement, 0);
+  EXPECT_EQ(placed_sizes, std::vector<size_t>{14});
+  EXPECT_EQ(ls[1].measurements.front(), 200);
+  EXPECT_EQ(ls[2].label, "cabinet");
+
+  // The weaker of two is the one merged, whichever comes first; equal ones: the later.
+  std::vector<ObjectLandmark> two = {landmark_at("chair", 0.0, 0.0, 0, 3), landmark_at("chair", 0.1, 0.0, 10, 3)};
+  merge_contained_landmarks(two, [](ObjectLandmark&) {});
+  ASSERT_EQ(two.size(), 1u);
+  EXPECT_EQ(two[0].measurements, (std::vector<int>{0, 1, 2, 10, 11, 12}));
+}
+
+TEST(Association, MergeContainedKeyLoadsAndABadValueIsNamed) {
+  SemanticOptions defaults;
+  EXPECT_TRUE(defaults.association.merge_contained);
+  const auto o = load_semantic_options(YAML::Load("association: {merge_contained: false}"), "s.yaml");
+  EXPECT_FALSE(o.association.merge_contained);
+  test::expect_load_error_names("association: {merge_contained: sometimes}", "association.merge_contained");
 }
 
 }  // namespace
