@@ -260,8 +260,7 @@ TEST(Association, SuffixSwapKeysLoadAndABadOneIsNamed) {
   test::expect_load_error_names("association: {compactness_weight: -1}", "association.compactness_weight");
 }
 
-// A landmark inside the footprint of a same-class landmark with more measurements joins it, and the
-// merged landmark's pose is chosen again; one just outside it, or of another class, stays.
+// A chair-sized landmark turned by 0.3 rad, holding measurement ids first_id .. first_id + count - 1.
 ObjectLandmark landmark_at(const std::string& label, double x, double y, int first_id, int count) {
   ObjectLandmark l;
   l.label = label;
@@ -271,6 +270,8 @@ ObjectLandmark landmark_at(const std::string& label, double x, double y, int fir
   return l;
 }
 
+// A landmark inside the footprint of a same-class landmark with more measurements joins it, and the
+// merged landmark's pose is chosen again; one just outside it, or of another class, stays.
 TEST(Association, LandmarkInsideAStrongerOneOfItsClassJoinsIt) {
   std::vector<ObjectLandmark> ls = {landmark_at("chair", 0.12, 0.10, 100, 4),     // inside the next one
                                     landmark_at("chair", 0.0, 0.0, 0, 10),
