@@ -40,29 +40,44 @@ GroupObject make_group_object(int group, const std::vector<int>& ids, const std:
   return o;
 }
 
-// Whether a world point lies inside a landmark's footprint (its box seen from above).
-bool inside_footprint(const ObjectPose& box, const Eigen::Vector3d& p) {
+// Whether a world point lies inside a landmark's footprint (its box seen from above), or with
+// `whole_box` inside its 3-D box.
+bool inside_box(const ObjectPose& box, const Eigen::Vector3d& p, bool whole_box = false) {
   const Eigen::Vector3d local = box.pose.inverse() * p;
-  return std::abs(local.x()) <= 0.5 * box.size.x() && std::abs(local.y()) <= 0.5 * box.size.y();
+  return std::abs(local.x()) <= 0.5 * box.size.x() && std::abs(local.y()) <= 0.5 * box.size.y() &&
+         (!whole_box || std::abs(local.z()) <= 0.5 * box.size.z());
+}
+
+// Landmark indices, most measurements first (the earlier on a tie).
+std::vector<size_t> strongest_first(const std::vector<ObjectLandmark>& landmarks) {
+  std::vector<size_t> order(landmarks.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return landmarks[a].measurements.size() > landmarks[b].measurements.size();
+  });
+  return order;
+}
+
+void erase_gone(std::vector<ObjectLandmark>& landmarks, const std::vector<bool>& gone) {
+  std::vector<ObjectLandmark> kept;
+  for (size_t i = 0; i < landmarks.size(); ++i)
+    if (!gone[i]) kept.push_back(std::move(landmarks[i]));
+  landmarks = std::move(kept);
 }
 
 }  // namespace
 
 void merge_contained_landmarks(std::vector<ObjectLandmark>& landmarks,
                                const std::function<void(ObjectLandmark&)>& place) {
-  // Strongest first (most measurements; the earlier on a tie): each landmark is tested against
-  // those before it that are still kept, with their poses after any merge.
-  std::vector<size_t> order(landmarks.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return landmarks[a].measurements.size() > landmarks[b].measurements.size();
-  });
+  // Each landmark is tested against the stronger ones that are still kept, with their poses after
+  // any merge.
+  const std::vector<size_t> order = strongest_first(landmarks);
   std::vector<bool> gone(landmarks.size(), false);
   for (size_t oi = 1; oi < order.size(); ++oi) {
     ObjectLandmark& weak = landmarks[order[oi]];
     for (size_t si = 0; si < oi; ++si) {
       ObjectLandmark& strong = landmarks[order[si]];
-      if (gone[order[si]] || strong.label != weak.label || !inside_footprint(strong.pose, weak.pose.pose.translation()))
+      if (gone[order[si]] || strong.label != weak.label || !inside_box(strong.pose, weak.pose.pose.translation()))
         continue;
       strong.measurements.insert(strong.measurements.end(), weak.measurements.begin(), weak.measurements.end());
       std::sort(strong.measurements.begin(), strong.measurements.end());
@@ -71,10 +86,25 @@ void merge_contained_landmarks(std::vector<ObjectLandmark>& landmarks,
       break;
     }
   }
-  std::vector<ObjectLandmark> kept;
-  for (size_t i = 0; i < landmarks.size(); ++i)
-    if (!gone[i]) kept.push_back(std::move(landmarks[i]));
-  landmarks = std::move(kept);
+  erase_gone(landmarks, gone);
+}
+
+void drop_landmarks_inside_other_classes(std::vector<ObjectLandmark>& landmarks,
+                                         const std::set<std::string>& support_classes) {
+  // Each landmark is tested against the stronger ones that are still kept.
+  const std::vector<size_t> order = strongest_first(landmarks);
+  std::vector<bool> gone(landmarks.size(), false);
+  for (size_t oi = 1; oi < order.size(); ++oi) {
+    const ObjectLandmark& weak = landmarks[order[oi]];
+    if (support_classes.count(weak.label)) continue;
+    for (size_t si = 0; si < oi && !gone[order[oi]]; ++si) {
+      const ObjectLandmark& strong = landmarks[order[si]];
+      gone[order[oi]] = !gone[order[si]] && strong.label != weak.label && !support_classes.count(strong.label) &&
+                        strong.measurements.size() > weak.measurements.size() &&
+                        inside_box(strong.pose, weak.pose.pose.translation(), true);
+    }
+  }
+  erase_gone(landmarks, gone);
 }
 
 namespace {
@@ -334,6 +364,8 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
     candidates.push_back(std::move(l));
   }
   if (options.association.merge_contained && !hdp_only) merge_contained_landmarks(candidates, place);
+  if (options.association.drop_inside_other_class && !hdp_only)
+    drop_landmarks_inside_other_classes(candidates, options.support_classes);
   for (auto& l : candidates) {
     l.id = static_cast<int>(r.landmarks.size());
     for (int id : l.measurements) r.landmark_of[id] = l.id;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <set>
 #include <vector>
 
 #include "semantics/association_model.h"
@@ -40,6 +41,15 @@ struct AssociationResult {
 // pose again. Landmarks keep their order; ids are left to the caller. Hierarchical mode only.
 void merge_contained_landmarks(std::vector<ObjectLandmark>& landmarks,
                                const std::function<void(ObjectLandmark&)>& place);
+
+// Two objects cannot stand in one place either (association.drop_inside_other_class, our addition):
+// a landmark whose position lies inside the 3-D box of a landmark of another class with more
+// measurements was measured on that object (a cabinet behind a wheelchair, whose few placed
+// measurements fell on the wheelchair) and is dropped; its measurements are left without a
+// landmark. Landmarks of the support classes (things stand on them, or under them) neither drop nor
+// are dropped. Landmarks keep their order; ids are left to the caller. Hierarchical mode only.
+void drop_landmarks_inside_other_classes(std::vector<ObjectLandmark>& landmarks,
+                                         const std::set<std::string>& support_classes);
 
 // Where the keyframes were taken: with it, MOT predicts a track's box in the next keyframe from the
 // camera's motion (groups.camera_motion); without it, from the Kalman filter's image velocity only.

@@ -297,6 +297,44 @@ TEST(Association, LandmarkInsideAStrongerOneOfItsClassJoinsIt) {
   EXPECT_EQ(two[0].measurements, (std::vector<int>{0, 1, 2, 10, 11, 12}));
 }
 
+// A landmark inside the 3-D box of a landmark of another class with more measurements is dropped;
+// one above that box, of a support class or under one, with as many measurements, or of the same
+// class (merge_contained's work) stays.
+TEST(Association, LandmarkInsideAStrongerOneOfAnotherClassIsDropped) {
+  auto at_height = [](ObjectLandmark l, double z) {
+    l.pose.pose = slam::SE3(l.pose.pose.rotation(), Eigen::Vector3d(l.pose.pose.translation().x(), l.pose.pose.translation().y(), z));
+    return l;
+  };
+  std::vector<ObjectLandmark> ls = {
+      landmark_at("cabinet", 0.1, 0.1, 100, 3),               // 0: inside the wheelchair's box: dropped
+      landmark_at("wheelchair", 0.0, 0.0, 0, 10),             // 1
+      at_height(landmark_at("tv", 0.05, 0.0, 200, 3), 1.0),   // 2: above it (its box ends at 0.825 m)
+      landmark_at("chair", 3.0, 0.0, 300, 4),                 // 3: under the table
+      landmark_at("table", 3.1, 0.1, 400, 20),                // 4: a support class
+      landmark_at("cabinet", 6.0, 0.0, 500, 5),               // 5
+      landmark_at("wheelchair", 6.1, 0.0, 600, 5),            // 6: as many measurements
+      landmark_at("wheelchair", 0.1, -0.1, 700, 4)};          // 7: the same class
+  drop_landmarks_inside_other_classes(ls, SemanticOptions().support_classes);
+  ASSERT_EQ(ls.size(), 7u);
+  const std::vector<std::string> labels = {"wheelchair", "tv", "chair", "table", "cabinet", "wheelchair", "wheelchair"};
+  for (size_t i = 0; i < ls.size(); ++i) EXPECT_EQ(ls[i].label, labels[i]) << i;
+  EXPECT_EQ(ls[0].measurements.size(), 10u);  // nothing joins the stronger one
+
+  // Just outside the footprint (0.25 m half-width) stays too.
+  std::vector<ObjectLandmark> beside = {landmark_at("wheelchair", 0.0, 0.0, 0, 10),
+                                        landmark_at("cabinet", 0.0, 0.3 / std::cos(0.3), 100, 3)};
+  drop_landmarks_inside_other_classes(beside, SemanticOptions().support_classes);
+  EXPECT_EQ(beside.size(), 2u);
+}
+
+TEST(Association, DropInsideOtherClassKeyLoadsAndABadValueIsNamed) {
+  SemanticOptions defaults;
+  EXPECT_TRUE(defaults.association.drop_inside_other_class);
+  const auto o = load_semantic_options(YAML::Load("association: {drop_inside_other_class: false}"), "s.yaml");
+  EXPECT_FALSE(o.association.drop_inside_other_class);
+  test::expect_load_error_names("association: {drop_inside_other_class: 2}", "association.drop_inside_other_class");
+}
+
 TEST(Association, MergeContainedKeyLoadsAndABadValueIsNamed) {
   SemanticOptions defaults;
   EXPECT_TRUE(defaults.association.merge_contained);
