@@ -302,7 +302,9 @@ TEST(Association, LandmarkInsideAStrongerOneOfItsClassJoinsIt) {
 // class (merge_contained's work) stays.
 TEST(Association, LandmarkInsideAStrongerOneOfAnotherClassIsDropped) {
   auto at_height = [](ObjectLandmark l, double z) {
-    l.pose.pose = slam::SE3(l.pose.pose.rotation(), Eigen::Vector3d(l.pose.pose.translation().x(), l.pose.pose.translation().y(), z));
+    Eigen::Vector3d t = l.pose.pose.translation();
+    t.z() = z;
+    l.pose.pose = slam::SE3(l.pose.pose.rotation(), t);
     return l;
   };
   std::vector<ObjectLandmark> ls = {
