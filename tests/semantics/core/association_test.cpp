@@ -329,20 +329,22 @@ TEST(Association, LandmarkInsideAStrongerOneOfAnotherClassIsDropped) {
   EXPECT_EQ(beside.size(), 2u);
 }
 
+// A boolean association key: on by default, loads false over it, and a bad value is named.
+void expect_bool_key_on_loads_and_names_a_bad_value(const std::string& key, bool AssociationOptions::*member,
+                                                    const std::string& bad) {
+  EXPECT_TRUE(SemanticOptions().association.*member);
+  const auto o = load_semantic_options(YAML::Load("association: {" + key + ": false}"), "s.yaml");
+  EXPECT_FALSE(o.association.*member);
+  test::expect_load_error_names("association: {" + key + ": " + bad + "}", "association." + key);
+}
+
 TEST(Association, DropInsideOtherClassKeyLoadsAndABadValueIsNamed) {
-  SemanticOptions defaults;
-  EXPECT_TRUE(defaults.association.drop_inside_other_class);
-  const auto o = load_semantic_options(YAML::Load("association: {drop_inside_other_class: false}"), "s.yaml");
-  EXPECT_FALSE(o.association.drop_inside_other_class);
-  test::expect_load_error_names("association: {drop_inside_other_class: 2}", "association.drop_inside_other_class");
+  expect_bool_key_on_loads_and_names_a_bad_value("drop_inside_other_class",
+                                                 &AssociationOptions::drop_inside_other_class, "2");
 }
 
 TEST(Association, MergeContainedKeyLoadsAndABadValueIsNamed) {
-  SemanticOptions defaults;
-  EXPECT_TRUE(defaults.association.merge_contained);
-  const auto o = load_semantic_options(YAML::Load("association: {merge_contained: false}"), "s.yaml");
-  EXPECT_FALSE(o.association.merge_contained);
-  test::expect_load_error_names("association: {merge_contained: sometimes}", "association.merge_contained");
+  expect_bool_key_on_loads_and_names_a_bad_value("merge_contained", &AssociationOptions::merge_contained, "sometimes");
 }
 
 }  // namespace
