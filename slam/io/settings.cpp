@@ -1,6 +1,7 @@
 #include "slam/io/settings.h"
 
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "slam/core/errors.h"
@@ -42,6 +43,26 @@ double required_number(const YAML::Node& root, std::initializer_list<const char*
   throw InputError(file.string(), std::string("missing key '") + *keys.begin() + "' (camera calibration)");
 }
 
+// yaml-cpp keeps the first of two equal keys of a mapping and silently ignores the other: a second
+// `semantics:` section appended to a settings file would be lost. YAML forbids repeated keys.
+void reject_repeated_keys(const YAML::Node& node, const std::string& path, const fs::path& file) {
+  if (node.IsSequence())
+    for (const auto& item : node) reject_repeated_keys(item, path, file);
+  if (!node.IsMap()) return;
+  std::map<std::string, int> first_line;
+  for (const auto& kv : node) {
+    if (!kv.first.IsScalar()) continue;
+    const std::string key = kv.first.Scalar(), full = path.empty() ? key : path + "." + key;
+    const int line = kv.first.Mark().line + 1;
+    const auto [it, fresh] = first_line.emplace(key, line);
+    if (!fresh)
+      throw InputError(file.string(), "key '" + full + "' appears twice (lines " + std::to_string(it->second) + " and " +
+                                          std::to_string(line) + "); merge the two, the second would be ignored",
+                       line);
+    reject_repeated_keys(kv.second, full, file);
+  }
+}
+
 }  // namespace
 
 Settings parse_settings(const std::string& text, const fs::path& file) {
@@ -53,6 +74,7 @@ Settings parse_settings(const std::string& text, const fs::path& file) {
     throw InputError(file.string(), "YAML syntax error: " + ex.msg, ex.mark.line + 1);
   }
   if (!s.root.IsMap()) throw InputError(file.string(), "expected a YAML mapping of settings");
+  reject_repeated_keys(s.root, "", file);
   const YAML::Node& r = s.root;
   CameraSettings& c = s.camera;
   read_key(r, "Camera.type", c.type, file, "a string");

@@ -70,6 +70,10 @@ TEST(Settings, ErrorsNameTheKey) {
             "s.yaml: key 'Camera.type': 'KannalaBrandt8' is not supported (allowed: PinHole)");
   EXPECT_NE(error_of("Camera1.fx: -5\nCamera1.fy: 1\nCamera1.cx: 1\nCamera1.cy: 1\nCamera.width: 9\nCamera.height: 9\n")
                 .find("fx must be positive"), std::string::npos);
+  EXPECT_EQ(error_of("semantics:\n  association: {chains: 2}\nsemantics:\n  groups: {size: 4}\n"),
+            "s.yaml:3: key 'semantics' appears twice (lines 1 and 3); merge the two, the second would be ignored");
+  EXPECT_EQ(error_of("a:\n  - b: {c: 1, c: 2}\n"),
+            "s.yaml:2: key 'a.b.c' appears twice (lines 2 and 2); merge the two, the second would be ignored");
   EXPECT_NE(error_of("a: [1, 2\n").find("s.yaml:2: YAML syntax error"), std::string::npos) << error_of("a: [1, 2\n");
   const Settings s = parse_settings(kOrbSlam3, "t.yaml");
   std::string e;
