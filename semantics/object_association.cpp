@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <optional>
 #include <thread>
 
 #include "hdp/crf_sampler.h"
@@ -58,12 +59,80 @@ std::vector<size_t> strongest_first(const std::vector<ObjectLandmark>& landmarks
   return order;
 }
 
+// Whether at least half of the measurements' boxes lie within `margin` pixels of the image's left
+// or right border (association.border_min_measurements, border_min_placed_measurements).
+bool mostly_at_side_border(const std::vector<int>& ids, const std::vector<ObjectMeasurement>& ms,
+                           const slam::PinholeCamera& camera, double margin) {
+  int at = 0;
+  for (int id : ids) {
+    const Eigen::Vector4d& b = ms[id].box;
+    if (b(0) <= margin || b(2) >= camera.width - 1 - margin) ++at;
+  }
+  return 2 * at >= static_cast<int>(ids.size());
+}
+
 void erase_gone(std::vector<ObjectLandmark>& landmarks, const std::vector<bool>& gone) {
   std::vector<ObjectLandmark> kept;
   for (size_t i = 0; i < landmarks.size(); ++i)
     if (!gone[i]) kept.push_back(std::move(landmarks[i]));
   landmarks = std::move(kept);
 }
+
+// The image box of a landmark's 3-D box in keyframe `kf`, clipped to the image; empty when a corner
+// lies behind the camera or the box falls outside the image.
+std::optional<Eigen::Vector4d> projected_box(const ObjectPose& box, const KeyframeViews& views, int kf) {
+  const slam::SE3 T_cw = views.T_wc[kf].inverse();
+  Eigen::Vector4d b(1e18, 1e18, -1e18, -1e18);
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector3d corner(c & 1 ? 0.5 : -0.5, c & 2 ? 0.5 : -0.5, c & 4 ? 0.5 : -0.5);
+    const Eigen::Vector3d p = T_cw * (box.pose * corner.cwiseProduct(box.size));
+    if (p.z() < 0.1) return std::nullopt;
+    const Eigen::Vector2d uv = views.camera.project(p);
+    b = Eigen::Vector4d(std::min(b(0), uv.x()), std::min(b(1), uv.y()), std::max(b(2), uv.x()), std::max(b(3), uv.y()));
+  }
+  b = b.cwiseMax(Eigen::Vector4d::Zero())
+          .cwiseMin(Eigen::Vector4d(views.camera.width - 1, views.camera.height - 1, views.camera.width - 1,
+                                    views.camera.height - 1));
+  if (b(2) <= b(0) || b(3) <= b(1)) return std::nullopt;
+  return b;
+}
+
+double box_iou(const Eigen::Vector4d& a, const Eigen::Vector4d& b) {
+  const double w = std::min(a(2), b(2)) - std::max(a(0), b(0)), h = std::min(a(3), b(3)) - std::max(a(1), b(1));
+  if (w <= 0 || h <= 0) return 0;
+  const double inter = w * h;
+  return inter / ((a(2) - a(0)) * (a(3) - a(1)) + (b(2) - b(0)) * (b(3) - b(1)) - inter);
+}
+
+// A landmark reported only through the side-border minimums whose boxes, in at least half of its
+// keyframes, lie where a landmark of its class reported on its own projects (IoU at least
+// `min_iou`) was measured on that object (a pole cut by the border, its few placed measurements
+// low and off): it is dropped, its measurements left without a landmark, as they were without the
+// border minimums.
+void drop_border_landmarks_on_others(std::vector<ObjectLandmark>& landmarks, const std::vector<bool>& border_only,
+                                     const std::vector<ObjectMeasurement>& ms, const KeyframeViews& views,
+                                     double min_iou) {
+  std::vector<bool> gone(landmarks.size(), false);
+  for (size_t i = 0; i < landmarks.size(); ++i) {
+    if (!border_only[i]) continue;
+    int on_other = 0;
+    for (int id : landmarks[i].measurements) {
+      const ObjectMeasurement& m = ms[id];
+      if (m.keyframe < 0 || m.keyframe >= static_cast<int>(views.T_wc.size())) continue;
+      for (size_t j = 0; j < landmarks.size(); ++j) {
+        if (border_only[j] || landmarks[j].label != landmarks[i].label) continue;
+        const auto b = projected_box(landmarks[j].pose, views, m.keyframe);
+        if (b && box_iou(*b, m.box) >= min_iou) {
+          ++on_other;
+          break;
+        }
+      }
+    }
+    gone[i] = 2 * on_other >= static_cast<int>(landmarks[i].measurements.size());
+  }
+  erase_gone(landmarks, gone);
+}
+
 
 }  // namespace
 
@@ -338,6 +407,7 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
 
   // Reported landmarks: dishes with enough measurements, enough of them placed.
   std::vector<ObjectLandmark> candidates;
+  std::vector<bool> border_only;  // per candidate: reported only through the side-border minimums
   const auto place = [&](ObjectLandmark& l) {
     std::vector<int> ids;
     std::vector<ObjectPose> poses;
@@ -354,15 +424,26 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   for (int k = 0; k < result.num_dishes; ++k) {
     int placed = 0;
     for (int id : dish_measurements[k]) placed += ms[id].pose ? 1 : 0;
-    if (static_cast<int>(dish_measurements[k].size()) < options.association.min_measurements ||
-        placed < options.association.min_placed_measurements || placed == 0)
+    const AssociationOptions& ao = options.association;
+    const std::string& label = objects[dish_objects[k].front()].label;
+    // Seen mostly at the image's left or right border: fewer measurements, fewer placed for the
+    // thin classes (association.border_min_measurements, border_min_placed_measurements).
+    int min_count = ao.min_measurements, min_placed = ao.min_placed_measurements;
+    if (views && !hdp_only && mostly_at_side_border(dish_measurements[k], ms, views->camera, ao.border_touch_px)) {
+      min_count = std::min(min_count, ao.border_min_measurements);
+      min_placed = std::min(min_placed, options.thin_classes.count(label) ? ao.border_min_placed_measurements : min_count);
+    }
+    if (static_cast<int>(dish_measurements[k].size()) < min_count || placed < min_placed || placed == 0)
       continue;
     ObjectLandmark l;
-    l.label = objects[dish_objects[k].front()].label;
+    l.label = label;
     l.measurements = dish_measurements[k];
     place(l);
     candidates.push_back(std::move(l));
+    border_only.push_back(static_cast<int>(dish_measurements[k].size()) < ao.min_measurements ||
+                          placed < ao.min_placed_measurements);
   }
+  if (views) drop_border_landmarks_on_others(candidates, border_only, ms, *views, options.association.border_reprojection_iou);
   if (options.association.merge_contained && !hdp_only) merge_contained_landmarks(candidates, place);
   if (options.association.drop_inside_other_class && !hdp_only)
     drop_landmarks_inside_other_classes(candidates, options.support_classes);

@@ -55,6 +55,10 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(association.appearance_neutral, -1, 1, "association.appearance_neutral");
   c(association.min_measurements, 1, 10000, "association.min_measurements");
   c(association.min_placed_measurements, 1, 10000, "association.min_placed_measurements");
+  c(association.border_min_measurements, 1, 10000, "association.border_min_measurements");
+  c(association.border_min_placed_measurements, 1, 10000, "association.border_min_placed_measurements");
+  c(association.border_touch_px, 0, 1e4, "association.border_touch_px");
+  c(association.border_reprojection_iou, 0, 1, "association.border_reprojection_iou");
   c(association.chains, 1, 64, "association.chains");
   c(association.threads, 1, 64, "association.threads");
   c(measurement.max_size_ratio, 1, 100, "measurement.max_size_ratio");
@@ -139,6 +143,11 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(a, "semantics.association", "appearance_neutral", o.association.appearance_neutral, file);
   read_option(a, "semantics.association", "min_measurements", o.association.min_measurements, file);
   read_option(a, "semantics.association", "min_placed_measurements", o.association.min_placed_measurements, file);
+  read_option(a, "semantics.association", "border_min_measurements", o.association.border_min_measurements, file);
+  read_option(a, "semantics.association", "border_min_placed_measurements",
+              o.association.border_min_placed_measurements, file);
+  read_option(a, "semantics.association", "border_touch_px", o.association.border_touch_px, file);
+  read_option(a, "semantics.association", "border_reprojection_iou", o.association.border_reprojection_iou, file);
   read_option(a, "semantics.association", "merge_contained", o.association.merge_contained, file);
   read_option(a, "semantics.association", "drop_inside_other_class", o.association.drop_inside_other_class, file);
   read_option(a, "semantics.association", "chains", o.association.chains, file);

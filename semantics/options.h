@@ -118,6 +118,20 @@ struct AssociationOptions {
   hdp::CrfOptions crf;                // alpha, gamma, sweeps, seed
   int min_measurements = 3;           // landmarks with fewer measurements are not reported,
   int min_placed_measurements = 3;    // or with fewer measurements that have a pose
+  // An object seen mostly at the image's left or right border (its box within border_touch_px of
+  // it in at least half of its measurements) is entering or leaving the view: it is reported with
+  // border_min_measurements measurements and, if a chair, pole or wheelchair (thin_classes, which
+  // get no pose when cut there: measure_pose_from_depth), border_min_placed_measurements placed
+  // ones (our addition: a chair in a corner of every view keeps at most 2 placed measurements).
+  // Values equal to min_measurements / min_placed_measurements: off. Hierarchical mode, with the
+  // keyframe views (the image size), only.
+  int border_min_measurements = 3;
+  int border_min_placed_measurements = 1;
+  double border_touch_px = 8;
+  // Such a landmark whose boxes lie, in at least half of its keyframes, where a landmark of its class
+  // reported on its own projects (this IoU or more) was measured on that object and is dropped (a
+  // pole cut by the border, doubled: IoU 0.51-0.71; a chair beside another of its row: 0.17-0.44).
+  double border_reprojection_iou = 0.5;
   // Two objects of one class cannot stand in one place: a reported landmark whose position lies
   // inside the footprint of a same-class landmark with more measurements is that object split by
   // the sampler, and its measurements join it (our addition; the paper reports every cluster).

@@ -338,6 +338,133 @@ void expect_bool_key_on_loads_and_names_a_bad_value(const std::string& key, bool
   test::expect_load_error_names("association: {" + key + ": " + bad + "}", "association." + key);
 }
 
+// An object seen in `keyframes` keyframes by a still camera, at `x0` px from the image's left edge,
+// with a pose in the first keyframe only (a chair cut by the border gets none) or in all of them,
+// and a door in the middle of the view placed in every keyframe.
+std::vector<ObjectMeasurement> object_at_border(const std::string& label, double x0, int keyframes = 5,
+                                                bool all_placed = false) {
+  std::vector<ObjectMeasurement> ms;
+  for (int kf = 0; kf < 5; ++kf)
+    for (int o = 0; o < 2; ++o) {
+      if (o == 0 && kf >= keyframes) continue;
+      ObjectMeasurement m;
+      m.id = static_cast<int>(ms.size());
+      m.keyframe = kf;
+      m.timestamp = kf * 0.1;
+      m.label = o == 0 ? label : "door";
+      m.box = o == 0 ? Eigen::Vector4d(x0, 300, x0 + 120, 470) : Eigen::Vector4d(300, 100, 380, 380);
+      m.score = 0.9f;
+      m.embedding = Eigen::VectorXf::Unit(8, o);
+      m.gt_instance = o;
+      if (o == 1 || kf == 0 || all_placed)
+        m.pose = ObjectPose{slam::SE3(Eigen::Quaterniond::Identity(), Eigen::Vector3d(o == 0 ? -1.0 : 0.0, 0.4, 3.0)),
+                            Eigen::Vector3d(0.5, 0.5, 0.85)};
+      ms.push_back(m);
+    }
+  return ms;
+}
+
+// An object seen mostly at the image's left or right border is reported with
+// border_min_measurements measurements, and a chair, pole or wheelchair with
+// border_min_placed_measurements placed ones; elsewhere, with the options at the general minimums,
+// or without the keyframe views (no image size), it needs min_measurements and
+// min_placed_measurements.
+TEST(Association, ObjectSeenAtASideBorderNeedsFewerMeasurements) {
+  slam::PinholeCamera cam;
+  cam.fx = cam.fy = 525, cam.cx = 319.5, cam.cy = 239.5, cam.width = 640, cam.height = 480;
+  const KeyframeViews views{cam, std::vector<slam::SE3>(5)};
+  SemanticOptions on, off;
+  on.association.border_min_measurements = 2;
+  on.association.border_min_placed_measurements = 1;
+  off.association.border_min_measurements = off.association.min_measurements;
+  off.association.border_min_placed_measurements = off.association.min_placed_measurements;
+  const auto groups = groups_of(5, on.groups.size, on.groups.overlap);
+  const auto labels = [&](const std::vector<ObjectMeasurement>& ms, const SemanticOptions& o, const KeyframeViews* v) {
+    const AssociationResult r = associate_objects(ms, groups, o, v);
+    std::multiset<std::string> l;
+    for (const auto& lm : r.landmarks) {
+      l.insert(lm.label);
+      for (int id : lm.measurements) {
+        EXPECT_EQ(ms[id].label, lm.label);
+      }
+      if (lm.label != "door") {
+        EXPECT_EQ(lm.pose_measurement, 0);  // its one placed measurement
+      }
+    }
+    return l;
+  };
+  const std::multiset<std::string> door = {"door"};
+  for (double x0 : {0.0, 5.0}) {  // at the border, or a jittered box ending a few pixels short of it
+    EXPECT_EQ(labels(object_at_border("chair", x0), on, &views), (std::multiset<std::string>{"chair", "door"})) << x0;
+    EXPECT_EQ(labels(object_at_border("door", x0, 2, true), on, &views), (std::multiset<std::string>{"door", "door"}));
+  }
+  EXPECT_EQ(labels(object_at_border("chair", 100), on, &views), door);
+  EXPECT_EQ(labels(object_at_border("door", 100, 2, true), on, &views), door);
+  EXPECT_EQ(labels(object_at_border("door", 0, 1, true), on, &views), door);
+  EXPECT_EQ(labels(object_at_border("cabinet", 0), on, &views), door);  // not thin: its cuts are completed
+  EXPECT_EQ(labels(object_at_border("chair", 0), on, nullptr), door);
+  EXPECT_EQ(labels(object_at_border("chair", 0), off, &views), door);
+  EXPECT_EQ(labels(object_at_border("door", 0, 2, true), off, &views), door);
+  const auto o = load_semantic_options(
+      YAML::Load("association: {border_min_measurements: 2, border_min_placed_measurements: 1, border_touch_px: 4}"),
+      "s.yaml");
+  EXPECT_EQ(o.association.border_min_measurements, 2);
+  EXPECT_EQ(o.association.border_min_placed_measurements, 1);
+  EXPECT_DOUBLE_EQ(o.association.border_touch_px, 4);
+  test::expect_load_error_names("association: {border_min_measurements: 0}", "association.border_min_measurements");
+  test::expect_load_error_names("association: {border_min_placed_measurements: 0}",
+                                "association.border_min_placed_measurements");
+  test::expect_load_error_names("association: {border_touch_px: -2}", "association.border_touch_px");
+}
+
+// A chair fragment reported only through the side-border minimums whose boxes lie where a chair
+// landmark reported on its own projects was measured on that chair (its one placed measurement
+// 0.9 m off): it is dropped. Keyframes 0-4 see the chair at the left border, keyframes 5-9 (the
+// camera turned towards it) in the middle of the view.
+TEST(Association, BorderLandmarkWhereAnotherOfItsClassProjectsIsDropped) {
+  slam::PinholeCamera cam;
+  cam.fx = cam.fy = 525, cam.cx = 319.5, cam.cy = 239.5, cam.width = 640, cam.height = 480;
+  const Eigen::Vector3d chair(-1.6, 0.83, 3.0), size(0.5, 0.5, 0.85);
+  KeyframeViews views{cam, {}};
+  std::vector<ObjectMeasurement> ms;
+  for (int kf = 0; kf < 10; ++kf) {
+    const double yaw = kf < 5 ? 0.0 : std::atan2(chair.x(), chair.z());
+    views.T_wc.push_back(slam::SE3(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY()).toRotationMatrix(), Eigen::Vector3d::Zero()));
+    Eigen::Vector4d box(1e9, 1e9, -1e9, -1e9);
+    for (int c = 0; c < 8; ++c) {
+      const Eigen::Vector3d corner(c & 1 ? 0.5 : -0.5, c & 2 ? 0.5 : -0.5, c & 4 ? 0.5 : -0.5);
+      const Eigen::Vector2d uv = cam.project(views.T_wc[kf].inverse() * (chair + corner.cwiseProduct(size)));
+      box = Eigen::Vector4d(std::min(box(0), uv.x()), std::min(box(1), uv.y()), std::max(box(2), uv.x()),
+                            std::max(box(3), uv.y()));
+    }
+    ObjectMeasurement m;
+    m.id = kf;
+    m.keyframe = kf;
+    m.timestamp = kf * 0.1;
+    m.box = box.cwiseMax(Eigen::Vector4d::Zero()) + Eigen::Vector4d::Constant(kf < 5 ? 4 : 0);  // a detector's few px
+    m.label = "chair";
+    m.score = 0.9f;
+    m.embedding = Eigen::VectorXf::Unit(8, kf < 5 ? 0 : 1);
+    m.gt_instance = 0;
+    if (kf == 0 || kf >= 5)
+      m.pose = ObjectPose{slam::SE3(Eigen::Quaterniond::Identity(), chair + Eigen::Vector3d(kf == 0 ? 0.9 : 0.0, 0, 0)), size};
+    ms.push_back(m);
+  }
+  ASSERT_LE(ms[0].box(0), 8);  // at the left border
+  SemanticOptions o;
+  o.association.border_min_placed_measurements = 1;
+  const auto groups = groups_of(10, o.groups.size, o.groups.overlap);
+  const AssociationResult r = associate_objects(ms, groups, o, &views);
+  ASSERT_EQ(r.landmarks.size(), 1u);
+  EXPECT_EQ(r.landmarks[0].measurements, (std::vector<int>{5, 6, 7, 8, 9}));
+  o.association.border_reprojection_iou = 0.99;  // no projection matches this well: the fragment stays
+  EXPECT_EQ(associate_objects(ms, groups, o, &views).landmarks.size(), 2u);
+  EXPECT_DOUBLE_EQ(load_semantic_options(YAML::Load("association: {border_reprojection_iou: 0.4}"), "s.yaml")
+                       .association.border_reprojection_iou,
+                   0.4);
+  test::expect_load_error_names("association: {border_reprojection_iou: 1.5}", "association.border_reprojection_iou");
+}
+
 TEST(Association, DropInsideOtherClassKeyLoadsAndABadValueIsNamed) {
   expect_bool_key_on_loads_and_names_a_bad_value("drop_inside_other_class",
                                                  &AssociationOptions::drop_inside_other_class, "2");
