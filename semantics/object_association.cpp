@@ -12,6 +12,7 @@
 #include "hdp/crf_sampler.h"
 #include "hdp/suffix_swap.h"
 #include "mot/tracker.h"
+#include "semantics/object_metrics.h"
 #include "semantics/pose_selection.h"
 
 namespace wardmap::semantics {
@@ -97,13 +98,6 @@ std::optional<Eigen::Vector4d> projected_box(const ObjectPose& box, const Keyfra
   return b;
 }
 
-double box_iou(const Eigen::Vector4d& a, const Eigen::Vector4d& b) {
-  const double w = std::min(a(2), b(2)) - std::max(a(0), b(0)), h = std::min(a(3), b(3)) - std::max(a(1), b(1));
-  if (w <= 0 || h <= 0) return 0;
-  const double inter = w * h;
-  return inter / ((a(2) - a(0)) * (a(3) - a(1)) + (b(2) - b(0)) * (b(3) - b(1)) - inter);
-}
-
 // A landmark reported only through the side-border minimums whose boxes, in at least half of its
 // keyframes, lie where a landmark of its class reported on its own projects (IoU at least
 // `min_iou`) was measured on that object (a pole cut by the border, its few placed measurements
@@ -132,7 +126,6 @@ void drop_border_landmarks_on_others(std::vector<ObjectLandmark>& landmarks, con
   }
   erase_gone(landmarks, gone);
 }
-
 
 }  // namespace
 
