@@ -124,8 +124,9 @@ struct AssociationOptions {
   // get no pose when cut there: measure_pose_from_depth), border_min_placed_measurements placed
   // ones (our addition: a chair in a corner of every view keeps at most 2 placed measurements).
   // Values equal to min_measurements / min_placed_measurements: off. Hierarchical mode, with the
-  // keyframe views (the image size), only.
-  int border_min_measurements = 3;
+  // keyframe views (the image size), only. 2: a door passed at the border in 2 keyframes is mapped
+  // (docs/EXPERIMENTS.md, "Objects seen at a side border").
+  int border_min_measurements = 2;
   int border_min_placed_measurements = 1;
   double border_touch_px = 8;
   // Such a landmark whose boxes lie, in at least half of its keyframes, where a landmark of its class
