@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <set>
 #include <thread>
 
 #include "hdp/crf_sampler.h"
@@ -130,7 +131,8 @@ void drop_border_landmarks_on_others(std::vector<ObjectLandmark>& landmarks, con
 }  // namespace
 
 void merge_contained_landmarks(std::vector<ObjectLandmark>& landmarks,
-                               const std::function<void(ObjectLandmark&)>& place) {
+                               const std::function<void(ObjectLandmark&)>& place,
+                               const std::function<bool(const ObjectLandmark&, const ObjectLandmark&)>& never_together) {
   // Each landmark is tested against the stronger ones that are still kept, with their poses after
   // any merge.
   const std::vector<size_t> order = strongest_first(landmarks);
@@ -139,7 +141,12 @@ void merge_contained_landmarks(std::vector<ObjectLandmark>& landmarks,
     ObjectLandmark& weak = landmarks[order[oi]];
     for (size_t si = 0; si < oi; ++si) {
       ObjectLandmark& strong = landmarks[order[si]];
-      if (gone[order[si]] || strong.label != weak.label || !inside_box(strong.pose, weak.pose.pose.translation()))
+      // Or the stronger one's centre inside the weaker one's footprint, if the two were never
+      // measured in one keyframe: one of them turned wrongly puts the other's centre just outside
+      // its footprint (two neighbours of a row, measured close, are seen together).
+      if (gone[order[si]] || strong.label != weak.label ||
+          !(inside_box(strong.pose, weak.pose.pose.translation()) ||
+            (never_together && inside_box(weak.pose, strong.pose.pose.translation()) && never_together(strong, weak))))
         continue;
       strong.measurements.insert(strong.measurements.end(), weak.measurements.begin(), weak.measurements.end());
       std::sort(strong.measurements.begin(), strong.measurements.end());
@@ -437,7 +444,14 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
                           placed < ao.min_placed_measurements);
   }
   if (views) drop_border_landmarks_on_others(candidates, border_only, ms, *views, options.association.border_reprojection_iou);
-  if (options.association.merge_contained && !hdp_only) merge_contained_landmarks(candidates, place);
+  const auto never_together = [&](const ObjectLandmark& a, const ObjectLandmark& b) {
+    std::set<int> keyframes;
+    for (int id : a.measurements) keyframes.insert(ms[id].keyframe);
+    for (int id : b.measurements)
+      if (keyframes.count(ms[id].keyframe)) return false;
+    return true;
+  };
+  if (options.association.merge_contained && !hdp_only) merge_contained_landmarks(candidates, place, never_together);
   if (options.association.drop_inside_other_class && !hdp_only)
     drop_landmarks_inside_other_classes(candidates, options.support_classes);
   for (auto& l : candidates) {

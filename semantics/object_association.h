@@ -37,10 +37,13 @@ struct AssociationResult {
 
 // Two objects of one class cannot stand in one place (association.merge_contained, our addition):
 // each landmark whose position lies inside the footprint (its box seen from above) of a same-class
-// landmark with more measurements is merged into it, and `place` chooses the merged landmark's
-// pose again. Landmarks keep their order; ids are left to the caller. Hierarchical mode only.
-void merge_contained_landmarks(std::vector<ObjectLandmark>& landmarks,
-                               const std::function<void(ObjectLandmark&)>& place);
+// landmark with more measurements, or whose footprint holds that landmark's position when
+// `never_together` says the two were never measured in one keyframe, is merged into it, and `place`
+// chooses the merged landmark's pose again. Landmarks keep their order; ids are left to the caller.
+// Hierarchical mode only.
+void merge_contained_landmarks(
+    std::vector<ObjectLandmark>& landmarks, const std::function<void(ObjectLandmark&)>& place,
+    const std::function<bool(const ObjectLandmark&, const ObjectLandmark&)>& never_together = nullptr);
 
 // Two objects cannot stand in one place either (association.drop_inside_other_class, our addition):
 // a landmark whose position lies inside the 3-D box of a landmark of another class with more

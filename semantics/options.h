@@ -134,8 +134,10 @@ struct AssociationOptions {
   // pole cut by the border, doubled: IoU 0.51-0.71; a chair beside another of its row: 0.17-0.44).
   double border_reprojection_iou = 0.5;
   // Two objects of one class cannot stand in one place: a reported landmark whose position lies
-  // inside the footprint of a same-class landmark with more measurements is that object split by
-  // the sampler, and its measurements join it (our addition; the paper reports every cluster).
+  // inside the footprint of a same-class landmark with more measurements, or whose footprint holds
+  // that landmark's position while the two were never measured in one keyframe (one of them turned
+  // wrongly), is that object split by the sampler, and its measurements join it (our addition; the
+  // paper reports every cluster).
   // Hierarchical mode only (hdp-only is the HDP-SLAM baseline, whose first-measurement poses put
   // neighbours inside each other: merging there lowered its accuracy on 15 of its 72 synthetic runs,
   // by 0.25-5.0 points).

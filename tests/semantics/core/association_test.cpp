@@ -260,18 +260,19 @@ TEST(Association, SuffixSwapKeysLoadAndABadOneIsNamed) {
   test::expect_load_error_names("association: {compactness_weight: -1}", "association.compactness_weight");
 }
 
-// A chair-sized landmark turned by 0.3 rad, holding measurement ids first_id .. first_id + count - 1.
-ObjectLandmark landmark_at(const std::string& label, double x, double y, int first_id, int count) {
+// A chair-sized landmark turned by `yaw`, holding measurement ids first_id .. first_id + count - 1.
+ObjectLandmark landmark_at(const std::string& label, double x, double y, int first_id, int count, double yaw = 0.3) {
   ObjectLandmark l;
   l.label = label;
-  l.pose = ObjectPose{slam::SE3(Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ())), Eigen::Vector3d(x, y, 0.4)),
+  l.pose = ObjectPose{slam::SE3(Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())), Eigen::Vector3d(x, y, 0.4)),
                       Eigen::Vector3d(0.5, 0.5, 0.85)};
   for (int i = 0; i < count; ++i) l.measurements.push_back(first_id + i);
   return l;
 }
 
-// A landmark inside the footprint of a same-class landmark with more measurements joins it, and the
-// merged landmark's pose is chosen again; one just outside it, or of another class, stays.
+// A landmark inside the footprint of a same-class landmark with more measurements, or holding its
+// centre in its own footprint when the two were never seen together, joins it, and the merged landmark's pose is chosen again; one just
+// outside it, or of another class, stays.
 TEST(Association, LandmarkInsideAStrongerOneOfItsClassJoinsIt) {
   std::vector<ObjectLandmark> ls = {landmark_at("chair", 0.12, 0.10, 100, 4),     // inside the next one
                                     landmark_at("chair", 0.0, 0.0, 0, 10),
@@ -295,6 +296,25 @@ TEST(Association, LandmarkInsideAStrongerOneOfItsClassJoinsIt) {
   merge_contained_landmarks(two, [](ObjectLandmark&) {});
   ASSERT_EQ(two.size(), 1u);
   EXPECT_EQ(two[0].measurements, (std::vector<int>{0, 1, 2, 10, 11, 12}));
+
+  // A fragment turned otherwise (aisle_straight_quick_1, seed 3: yaw -0.17 against -0.62) lies just
+  // outside the stronger one's turned footprint but holds its centre: one object, merged.
+  std::vector<ObjectLandmark> turned = {landmark_at("chair", 0.0, 0.0, 0, 36, -0.62),
+                                        landmark_at("chair", 0.2, -0.19, 100, 12, -0.17)};
+  ASSERT_GT((turned[0].pose.pose.inverse() * turned[1].pose.pose.translation()).x(), 0.25);
+  const auto trusted = [](const ObjectLandmark&, const ObjectLandmark&) { return true; };
+  const auto untrusted = [](const ObjectLandmark&, const ObjectLandmark&) { return false; };  // seen together
+  std::vector<ObjectLandmark> kept = turned;
+  merge_contained_landmarks(kept, [](ObjectLandmark&) {}, untrusted);
+  EXPECT_EQ(kept.size(), 2u);
+  merge_contained_landmarks(turned, [](ObjectLandmark&) {}, trusted);
+  ASSERT_EQ(turned.size(), 1u);
+  EXPECT_EQ(turned[0].measurements.size(), 48u);
+  // Neighbours of a row 0.56 m apart stay apart, however they are turned.
+  std::vector<ObjectLandmark> row = {landmark_at("chair", 0.0, 0.0, 0, 36, -0.62),
+                                     landmark_at("chair", 0.56, 0.0, 100, 12, 0.0)};
+  merge_contained_landmarks(row, [](ObjectLandmark&) {}, trusted);
+  EXPECT_EQ(row.size(), 2u);
 }
 
 // A landmark inside the 3-D box of a landmark of another class with more measurements is dropped;
