@@ -233,7 +233,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 std::vector<std::pair<int, int>> track_in_group(const std::vector<int>& group_keyframes,
                                                 const std::vector<std::vector<int>>& by_keyframe,
                                                 const std::vector<ObjectMeasurement>& measurements,
-                                                const mot::TrackerOptions& options, const KeyframeViews* views) {
+                                                const mot::TrackerOptions& options, const KeyframeViews* views,
+                                                double min_appearance_width) {
   mot::Tracker tracker(options);
   std::map<std::string, int> classes;
   std::vector<std::pair<int, int>> out;  // (measurement id, track id)
@@ -268,7 +269,7 @@ std::vector<std::pair<int, int>> track_in_group(const std::vector<int>& group_ke
       d.box = m.box;
       d.class_id = class_index(m.label, classes);
       d.score = m.score;
-      d.embedding = m.embedding;
+      if (m.box(2) - m.box(0) >= min_appearance_width) d.embedding = m.embedding;
       d.user_index = id;
       dets.push_back(std::move(d));
     }
@@ -323,7 +324,8 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
     for (size_t n = 0; n < groups.size(); ++n) {
       std::map<int, std::vector<int>> tracks;
       for (const auto& [id, track] :
-           track_in_group(groups[n], by_keyframe, ms, options.tracker, options.groups.camera_motion ? views : nullptr)) {
+           track_in_group(groups[n], by_keyframe, ms, options.tracker, options.groups.camera_motion ? views : nullptr,
+                          options.groups.min_appearance_width)) {
         r.track_of[id] = track;
         r.group_of[id] = static_cast<int>(n);
         if (track >= 0) tracks[track].push_back(id);

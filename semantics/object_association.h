@@ -67,11 +67,13 @@ struct KeyframeViews {
 // box is predicted by moving its last box's centre ray, at the depth of its last measured pose,
 // into the next keyframe (its size scaled by the depth ratio): a quick pan moves every box by more
 // than the spacing of identical chairs side by side, which an image-space velocity cannot follow.
+// Boxes narrower than `min_appearance_width` px enter without their embedding (IoU stages only).
 std::vector<std::pair<int, int>> track_in_group(const std::vector<int>& group_keyframes,
                                                 const std::vector<std::vector<int>>& by_keyframe,
                                                 const std::vector<ObjectMeasurement>& measurements,
                                                 const mot::TrackerOptions& options,
-                                                const KeyframeViews* views = nullptr);
+                                                const KeyframeViews* views = nullptr,
+                                                double min_appearance_width = 0);
 
 // Runs the whole association over the measurements of all keyframes, grouped as `groups` (keyframe
 // indices; ignored in hdp-only mode, where every keyframe with measurements is its own group).

@@ -40,6 +40,7 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(measurement.support_area_ratio, 1, 1e6, "measurement.support_area_ratio");
   c(measurement.max_depth, 0.01, 1000, "measurement.max_depth");
   c(groups.split_distance, 0.01, 100, "groups.split_distance");
+  c(groups.min_appearance_width, 0, 1e4, "groups.min_appearance_width");
   c(measurement.depth_band, 0.01, 10, "measurement.depth_band");
   c(measurement.min_points, 3, 100000, "measurement.min_points");
   c(measurement.min_depth, 0, measurement.max_depth, "measurement.min_depth");
@@ -117,6 +118,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(m, "semantics.measurement", "max_depth", o.measurement.max_depth, file);
   read_option(g, "semantics.groups", "split_distance", o.groups.split_distance, file);
   read_option(g, "semantics.groups", "camera_motion", o.groups.camera_motion, file);
+  read_option(g, "semantics.groups", "min_appearance_width", o.groups.min_appearance_width, file);
   read_option(m, "semantics.measurement", "depth_band", o.measurement.depth_band, file);
   read_option(m, "semantics.measurement", "min_points", o.measurement.min_points, file);
   read_option(m, "semantics.measurement", "complete_depth_with_class_size", o.measurement.complete_depth_with_class_size, file);

@@ -99,6 +99,11 @@ struct GroupOptions {
   // MOT predicts a track's box in the next keyframe from the keyframe poses (the camera's motion)
   // instead of the Kalman filter's image velocity alone (see track_in_group).
   bool camera_motion = true;
+  // Boxes narrower than this (px) enter MOT without their embedding, so only the IoU stages can
+  // match them: OSNet sees a crop of a few pixels as noise, and far doors of one wall, a few
+  // pixels apart, swapped tracks on it. 0 (the default): every box by appearance (FairMOT). 16
+  // measured neutral over seeds 1-3 (docs/EXPERIMENTS.md, "aisle_straight: chairs in a row swapped").
+  double min_appearance_width = 0;
 };
 
 // GMM prior + likelihood of the HDP association (Assoc. Eq. 2-3, III-A.2).

@@ -116,6 +116,40 @@ TEST(Association, MotFollowsIdenticalNeighboursThroughAQuickPanWithTheKeyframePo
   EXPECT_EQ(mixed_tracks(&views), 0);
 }
 
+// Two far doors of one wall, a few pixels wide and 6 px apart, whose embeddings (OSNet on a crop of
+// a few pixels) swap from one keyframe to the next: matched by appearance their tracks swap; with
+// groups.min_appearance_width above their width the IoU stages keep each on its own door.
+TEST(Association, TinyBoxesAreTrackedWithoutTheirEmbedding) {
+  std::vector<ObjectMeasurement> ms;
+  std::vector<std::vector<int>> by_keyframe(4);
+  for (int kf = 0; kf < 4; ++kf)
+    for (int d = 0; d < 2; ++d) {
+      ObjectMeasurement m;
+      m.id = static_cast<int>(ms.size());
+      m.keyframe = kf;
+      const double x0 = 250 + 12 * d + kf;
+      m.box = Eigen::Vector4d(x0, 190, x0 + 6, 300);
+      m.label = "door";
+      m.score = 0.9f;
+      m.embedding = Eigen::VectorXf::Unit(8, (d + kf) % 2);
+      m.gt_instance = d;
+      by_keyframe[kf].push_back(m.id);
+      ms.push_back(m);
+    }
+  const auto mixed_tracks = [&](double min_width) {
+    std::map<int, std::set<int>> doors;
+    for (const auto& [id, track] : track_in_group({0, 1, 2, 3}, by_keyframe, ms, mot::TrackerOptions{}, nullptr, min_width))
+      if (track >= 0) doors[track].insert(ms[id].gt_instance);
+    int mixed = 0;
+    for (const auto& [track, d] : doors) mixed += d.size() > 1;
+    return mixed;
+  };
+  EXPECT_GT(mixed_tracks(0), 0);
+  EXPECT_EQ(mixed_tracks(16), 0);
+  EXPECT_DOUBLE_EQ(load_semantic_options(YAML::Load("groups: {min_appearance_width: 12}"), "s.yaml").groups.min_appearance_width, 12);
+  test::expect_load_error_names("groups: {min_appearance_width: -1}", "groups.min_appearance_width");
+}
+
 TEST(Association, HierarchicalSeparatesIdenticalNeighbours) {
   for (unsigned seed : {1u, 2u, 3u, 4u}) {
     const auto ms = passing_doors(seed);
