@@ -134,19 +134,32 @@ double AssociationModel::log_marginal(const std::vector<hdp::ItemRef>& members) 
 
 double AssociationModel::log_predictive_new(const hdp::ItemRef&) const { return log_new_; }
 
-bool AssociationModel::cannot_link(const hdp::ItemRef& a, const hdp::ItemRef& b) const {
-  const GroupObject& x = object(a);
-  const GroupObject& y = object(b);
-  if (x.label != y.label) return true;
-  // Seen at once as different detections: sorted (keyframe, id) lists, walk both per keyframe.
-  auto i = x.keyframe_measurements.begin(), j = y.keyframe_measurements.begin();
-  while (i != x.keyframe_measurements.end() && j != y.keyframe_measurements.end()) {
+std::vector<std::pair<int, int>> keyframe_measurements_of(const std::vector<int>& ids,
+                                                          const std::vector<ObjectMeasurement>& ms) {
+  std::vector<std::pair<int, int>> out;
+  out.reserve(ids.size());
+  for (int id : ids) out.emplace_back(ms[id].keyframe, id);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+bool detected_apart_in_one_keyframe(const std::vector<std::pair<int, int>>& a,
+                                    const std::vector<std::pair<int, int>>& b) {
+  // Walk both sorted lists per keyframe.
+  auto i = a.begin(), j = b.begin();
+  while (i != a.end() && j != b.end()) {
     if (i->first < j->first) ++i;
     else if (j->first < i->first) ++j;
     else if (i->second != j->second) return true;
     else ++i, ++j;
   }
   return false;
+}
+
+bool AssociationModel::cannot_link(const hdp::ItemRef& a, const hdp::ItemRef& b) const {
+  const GroupObject& x = object(a);
+  const GroupObject& y = object(b);
+  return x.label != y.label || detected_apart_in_one_keyframe(x.keyframe_measurements, y.keyframe_measurements);
 }
 
 }  // namespace wardmap::semantics

@@ -29,6 +29,15 @@ struct GroupObject {
 // 6-D pose feature of a measurement (Assoc. Eq. 2): world position and rotation vector.
 Eigen::VectorXd pose_feature(const ObjectPose& pose);
 
+// The sorted (keyframe, measurement id) list of measurements `ids`.
+std::vector<std::pair<int, int>> keyframe_measurements_of(const std::vector<int>& ids,
+                                                          const std::vector<ObjectMeasurement>& ms);
+
+// Whether two objects were measured as different detections of one keyframe, so are two objects
+// (a detector gives one box per object and keyframe). Takes sorted (keyframe, id) lists.
+bool detected_apart_in_one_keyframe(const std::vector<std::pair<int, int>>& a,
+                                    const std::vector<std::pair<int, int>>& b);
+
 class AssociationModel : public hdp::CrfModel {
  public:
   // groups[j][i] = index into `objects` of item i of group j. Objects must outlive the model.

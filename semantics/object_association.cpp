@@ -7,7 +7,6 @@
 #include <functional>
 #include <map>
 #include <optional>
-#include <set>
 #include <thread>
 
 #include "hdp/crf_sampler.h"
@@ -29,15 +28,14 @@ GroupObject make_group_object(int group, const std::vector<int>& ids, const std:
   o.group = group;
   o.measurements = ids;
   std::sort(o.measurements.begin(), o.measurements.end());
+  o.keyframe_measurements = keyframe_measurements_of(o.measurements, ms);
   std::map<std::string, int> votes;
   for (int id : o.measurements) {
     const auto& m = ms[id];
-    o.keyframe_measurements.emplace_back(m.keyframe, id);
     ++votes[m.label];
     if (m.pose) o.features.push_back(pose_feature(*m.pose));
     if (m.embedding.size() > 0) o.embedding = o.embedding.size() ? Eigen::VectorXf(o.embedding + m.embedding) : m.embedding;
   }
-  std::sort(o.keyframe_measurements.begin(), o.keyframe_measurements.end());
   o.label = std::max_element(votes.begin(), votes.end(), [](auto& a, auto& b) { return a.second < b.second; })->first;
   if (o.embedding.size() > 0 && o.embedding.norm() > 0) o.embedding.normalize();
   return o;
@@ -447,11 +445,8 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   }
   if (views) drop_border_landmarks_on_others(candidates, border_only, ms, *views, options.association.border_reprojection_iou);
   const auto never_together = [&](const ObjectLandmark& a, const ObjectLandmark& b) {
-    std::set<int> keyframes;
-    for (int id : a.measurements) keyframes.insert(ms[id].keyframe);
-    for (int id : b.measurements)
-      if (keyframes.count(ms[id].keyframe)) return false;
-    return true;
+    return !detected_apart_in_one_keyframe(keyframe_measurements_of(a.measurements, ms),
+                                           keyframe_measurements_of(b.measurements, ms));
   };
   if (options.association.merge_contained && !hdp_only) merge_contained_landmarks(candidates, place, never_together);
   if (options.association.drop_inside_other_class && !hdp_only)

@@ -305,8 +305,8 @@ ObjectLandmark landmark_at(const std::string& label, double x, double y, int fir
 }
 
 // A landmark inside the footprint of a same-class landmark with more measurements, or holding its
-// centre in its own footprint when the two were never seen together, joins it, and the merged landmark's pose is chosen again; one just
-// outside it, or of another class, stays.
+// centre in its own footprint when the two were never seen together, joins it, and the merged
+// landmark's pose is chosen again; one just outside it, or of another class, stays.
 TEST(Association, LandmarkInsideAStrongerOneOfItsClassJoinsIt) {
   std::vector<ObjectLandmark> ls = {landmark_at("chair", 0.12, 0.10, 100, 4),     // inside the next one
                                     landmark_at("chair", 0.0, 0.0, 0, 10),
