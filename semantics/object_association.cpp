@@ -156,6 +156,58 @@ void merge_contained_landmarks(std::vector<ObjectLandmark>& landmarks,
   erase_gone(landmarks, gone);
 }
 
+namespace {
+
+// Root of `i` in a disjoint-set forest, with path halving.
+int root_of(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+}  // namespace
+
+int link_through_unplaced_tracks(const std::vector<std::vector<int>>& unplaced,
+                                 const std::vector<std::string>& unplaced_labels,
+                                 const std::vector<std::string>& dish_labels, const std::vector<bool>& reportable,
+                                 const std::function<bool(const std::vector<int>&, const std::vector<int>&)>& never_together,
+                                 std::vector<int>& dish_of) {
+  // Tracks: unplaced group objects of one class sharing a detection.
+  std::vector<int> track(unplaced.size());
+  for (size_t i = 0; i < track.size(); ++i) track[i] = static_cast<int>(i);
+  std::map<int, int> holder;  // measurement id -> an unplaced group object holding it
+  for (size_t i = 0; i < unplaced.size(); ++i)
+    for (int id : unplaced[i]) {
+      const auto [it, fresh] = holder.emplace(id, static_cast<int>(i));
+      if (!fresh && unplaced_labels[it->second] == unplaced_labels[i])
+        track[root_of(track, static_cast<int>(i))] = root_of(track, it->second);
+    }
+  std::map<int, std::set<int>> touched;  // track root -> same-class dishes its detections belong to
+  for (size_t i = 0; i < unplaced.size(); ++i)
+    for (int id : unplaced[i])
+      if (dish_of[id] >= 0 && dish_labels[dish_of[id]] == unplaced_labels[i])
+        touched[root_of(track, static_cast<int>(i))].insert(dish_of[id]);
+
+  std::vector<std::vector<int>> dish_measurements(dish_labels.size());
+  for (size_t id = 0; id < dish_of.size(); ++id)
+    if (dish_of[id] >= 0) dish_measurements[dish_of[id]].push_back(static_cast<int>(id));
+  std::vector<int> dish(dish_labels.size());
+  for (size_t k = 0; k < dish.size(); ++k) dish[k] = static_cast<int>(k);
+  int merged = 0;
+  for (const auto& [t, dishes] : touched)
+    for (auto a = dishes.begin(); a != dishes.end(); ++a)
+      for (auto b = std::next(a); b != dishes.end(); ++b) {
+        const int ra = root_of(dish, *a), rb = root_of(dish, *b);
+        if (ra == rb || !reportable[*a] || !reportable[*b] ||
+            !never_together(dish_measurements[*a], dish_measurements[*b]))
+          continue;
+        dish[std::max(ra, rb)] = std::min(ra, rb);
+        ++merged;
+      }
+  for (auto& d : dish_of)
+    if (d >= 0) d = root_of(dish, d);
+  return merged;
+}
+
 void drop_landmarks_inside_other_classes(std::vector<ObjectLandmark>& landmarks,
                                          const std::set<std::string>& support_classes) {
   // Each landmark is tested against the stronger ones that are still kept.
@@ -306,6 +358,8 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   auto t0 = std::chrono::steady_clock::now();
   std::vector<GroupObject> objects;
   std::vector<std::vector<int>> items;  // per CRF group: object indices
+  std::vector<std::vector<int>> unplaced;  // group objects without a placed measurement
+  std::vector<std::string> unplaced_labels;
   if (hdp_only) {
     for (int kf = 0; kf <= max_kf; ++kf) {
       if (by_keyframe[kf].empty()) continue;
@@ -332,7 +386,11 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
       for (const auto& [track, ids] : tracks)
         for (const auto& segment : split_track_by_position(ids, ms, options.groups.split_distance)) {
           GroupObject o = make_group_object(static_cast<int>(items.size()), segment, ms);
-          if (o.features.empty()) continue;  // no measurement could be placed
+          if (o.features.empty()) {  // no measurement could be placed: not an HDP item
+            unplaced.push_back(o.measurements);
+            unplaced_labels.push_back(o.label);
+            continue;
+          }
           g.push_back(static_cast<int>(objects.size()));
           objects.push_back(std::move(o));
         }
@@ -401,9 +459,32 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
           best_size[id] = static_cast<int>(objects[o].measurements.size());
           dish_of[id] = k;
         }
-  std::vector<std::vector<int>> dish_measurements(result.num_dishes);
-  for (const auto& m : ms)
-    if (dish_of[m.id] >= 0) dish_measurements[dish_of[m.id]].push_back(m.id);
+  const AssociationOptions& ao = options.association;
+  const auto placed_count = [&](const std::vector<int>& ids) {
+    return static_cast<int>(std::count_if(ids.begin(), ids.end(), [&](int id) { return ms[id].pose.has_value(); }));
+  };
+  const auto never_measured_together = [&](const std::vector<int>& a, const std::vector<int>& b) {
+    return !detected_apart_in_one_keyframe(keyframe_measurements_of(a, ms), keyframe_measurements_of(b, ms));
+  };
+  std::vector<std::vector<int>> dish_measurements;
+  const auto collect_dish_measurements = [&]() {
+    dish_measurements.assign(result.num_dishes, {});
+    for (const auto& m : ms)
+      if (dish_of[m.id] >= 0) dish_measurements[dish_of[m.id]].push_back(m.id);
+  };
+  collect_dish_measurements();
+  if (ao.bridge_unplaced_tracks && !hdp_only) {
+    std::vector<std::string> dish_labels(result.num_dishes);
+    std::vector<bool> reportable(result.num_dishes);
+    for (int k = 0; k < result.num_dishes; ++k) {
+      if (!dish_objects[k].empty()) dish_labels[k] = objects[dish_objects[k].front()].label;
+      reportable[k] = static_cast<int>(dish_measurements[k].size()) >= ao.min_measurements &&
+                      placed_count(dish_measurements[k]) >= ao.min_placed_measurements;
+    }
+    if (link_through_unplaced_tracks(unplaced, unplaced_labels, dish_labels, reportable, never_measured_together,
+                                     dish_of) > 0)
+      collect_dish_measurements();
+  }
 
   // Reported landmarks: dishes with enough measurements, enough of them placed.
   std::vector<ObjectLandmark> candidates;
@@ -422,9 +503,7 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
     l.pose = poses[pick];
   };
   for (int k = 0; k < result.num_dishes; ++k) {
-    int placed = 0;
-    for (int id : dish_measurements[k]) placed += ms[id].pose ? 1 : 0;
-    const AssociationOptions& ao = options.association;
+    const int placed = placed_count(dish_measurements[k]);
     const std::string& label = objects[dish_objects[k].front()].label;
     // Seen mostly at the image's left or right border: fewer measurements, fewer placed for the
     // thin classes (association.border_min_measurements, border_min_placed_measurements).
@@ -445,8 +524,7 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   }
   if (views) drop_border_landmarks_on_others(candidates, border_only, ms, *views, options.association.border_reprojection_iou);
   const auto never_together = [&](const ObjectLandmark& a, const ObjectLandmark& b) {
-    return !detected_apart_in_one_keyframe(keyframe_measurements_of(a.measurements, ms),
-                                           keyframe_measurements_of(b.measurements, ms));
+    return never_measured_together(a.measurements, b.measurements);
   };
   if (options.association.merge_contained && !hdp_only) merge_contained_landmarks(candidates, place, never_together);
   if (options.association.drop_inside_other_class && !hdp_only)

@@ -45,6 +45,21 @@ void merge_contained_landmarks(
     std::vector<ObjectLandmark>& landmarks, const std::function<void(ObjectLandmark&)>& place,
     const std::function<bool(const ObjectLandmark&, const ObjectLandmark&)>& never_together = nullptr);
 
+// Group objects none of whose measurements could be placed never reach the sampler, so a track
+// that runs through keyframes without poses (a bed seen from above, cut by the bottom border)
+// leaves a gap the HDP cannot see across (association.bridge_unplaced_tracks, our addition).
+// `unplaced` holds those group objects (measurement ids, `unplaced_labels` their classes);
+// `dish_of` gives each measurement's landmark (dish) or -1, `dish_labels` each dish's class.
+// Unplaced group objects of one class sharing a detection (an overlapping keyframe) form one track;
+// the same-class dishes a track touches that are each `reportable` (a fragment below the reporting
+// minimums is no second object) are merged into the first when `never_together` holds for the
+// pair (their lists of measurement ids). `dish_of` is rewritten; returns the dishes merged away.
+int link_through_unplaced_tracks(const std::vector<std::vector<int>>& unplaced,
+                                 const std::vector<std::string>& unplaced_labels,
+                                 const std::vector<std::string>& dish_labels, const std::vector<bool>& reportable,
+                                 const std::function<bool(const std::vector<int>&, const std::vector<int>&)>& never_together,
+                                 std::vector<int>& dish_of);
+
 // Two objects cannot stand in one place either (association.drop_inside_other_class, our addition):
 // a landmark whose position lies inside the 3-D box of a landmark of another class with more
 // measurements was measured on that object (a cabinet behind a wheelchair, whose few placed

@@ -152,6 +152,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(a, "semantics.association", "border_reprojection_iou", o.association.border_reprojection_iou, file);
   read_option(a, "semantics.association", "merge_contained", o.association.merge_contained, file);
   read_option(a, "semantics.association", "drop_inside_other_class", o.association.drop_inside_other_class, file);
+  read_option(a, "semantics.association", "bridge_unplaced_tracks", o.association.bridge_unplaced_tracks, file);
   read_option(a, "semantics.association", "chains", o.association.chains, file);
   read_option(a, "semantics.association", "threads", o.association.threads, file);
   read_option(m, "semantics.measurement", "max_size_ratio", o.measurement.max_size_ratio, file);

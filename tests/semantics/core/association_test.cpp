@@ -519,6 +519,70 @@ TEST(Association, BorderLandmarkWhereAnotherOfItsClassProjectsIsDropped) {
   test::expect_load_error_names("association: {border_reprojection_iou: 1.5}", "association.border_reprojection_iou");
 }
 
+// A bed tracked through keyframes where none of its boxes got a pose: measurements 0-2 form
+// landmark 0, 7-9 landmark 1 (measured 2 m off), and the unplaced group objects {2, 3, 4} and
+// {4, 5, 6, 7} (sharing detections 2, 4 and 7 through overlapping keyframes) carry the track from
+// one to the other: the two landmarks merge, unless they were measured together, one is a fragment
+// below the reporting minimums, or the track is of another class.
+TEST(Association, UnplacedTrackBridgesTheLandmarksItTouches) {
+  const std::vector<std::vector<int>> unplaced = {{2, 3, 4}, {4, 5, 6, 7}};
+  const std::vector<std::string> beds = {"bed", "bed"};
+  const std::vector<std::string> dish_labels = {"bed", "bed", "chair"};
+  const std::vector<bool> all(3, true);
+  const std::vector<int> before = {0, 0, 0, -1, -1, -1, -1, 1, 1, 1, 2};
+  const auto never = [](const std::vector<int>&, const std::vector<int>&) { return true; };
+  auto d = before;
+  EXPECT_EQ(link_through_unplaced_tracks(unplaced, beds, dish_labels, all, never, d), 1);
+  EXPECT_EQ(d, (std::vector<int>{0, 0, 0, -1, -1, -1, -1, 0, 0, 0, 2}));
+  d = before;
+  const auto seen_together = [](const std::vector<int>& a, const std::vector<int>& b) {
+    EXPECT_EQ(a, (std::vector<int>{0, 1, 2}));
+    EXPECT_EQ(b, (std::vector<int>{7, 8, 9}));
+    return false;
+  };
+  EXPECT_EQ(link_through_unplaced_tracks(unplaced, beds, dish_labels, all, seen_together, d), 0);
+  EXPECT_EQ(d, before);
+  EXPECT_EQ(link_through_unplaced_tracks(unplaced, beds, dish_labels, {true, false, true}, never, d), 0);
+  EXPECT_EQ(d, before);
+  EXPECT_EQ(link_through_unplaced_tracks({{2, 3, 4}}, {"bed"}, dish_labels, all, never, d), 0);  // a gap, no bridge
+  EXPECT_EQ(link_through_unplaced_tracks(unplaced, {"chair", "chair"}, dish_labels, all, never, d), 0);
+  EXPECT_EQ(link_through_unplaced_tracks(unplaced, {"bed", "chair"}, dish_labels, all, never, d), 0);
+  EXPECT_EQ(d, before);
+  // Through the whole association (groups of 6 keyframes overlapping by 2): the bed's track with
+  // poses in keyframes 0-3 and 10-13, 2 m apart, none in group 1's keyframes 4-9. Without the
+  // bridge the far part is a second bed.
+  std::vector<ObjectMeasurement> ms;
+  for (int kf = 0; kf < 14; ++kf) {
+    ObjectMeasurement m;
+    m.id = kf;
+    m.keyframe = kf;
+    m.timestamp = kf * 0.3;
+    m.box = Eigen::Vector4d(200 + 5 * kf, 250, 500 + 5 * kf, 470);
+    m.label = "bed";
+    m.score = 0.9f;
+    m.embedding = Eigen::VectorXf::Ones(8).normalized();
+    m.gt_instance = 0;
+    if (kf < 4 || kf > 9)
+      m.pose = ObjectPose{slam::SE3(Eigen::Quaterniond::Identity(), Eigen::Vector3d(kf < 4 ? 0.0 : 2.0, 3, 0.5)),
+                          Eigen::Vector3d(1.0, 2.1, 0.9)};
+    ms.push_back(m);
+  }
+  SemanticOptions o;
+  o.association.merge_contained = false;
+  const auto groups = groups_of(14, o.groups.size, o.groups.overlap);
+  ASSERT_EQ(groups.size(), 3u);
+  const AssociationResult r = associate_objects(ms, groups, o);
+  ASSERT_EQ(r.landmarks.size(), 1u);
+  EXPECT_EQ(r.landmarks[0].measurements, (std::vector<int>{0, 1, 2, 3, 4, 5, 8, 9, 10, 11, 12, 13}));
+  o.association.bridge_unplaced_tracks = false;
+  EXPECT_EQ(associate_objects(ms, groups, o).landmarks.size(), 2u);
+}
+
+TEST(Association, BridgeUnplacedTracksKeyLoadsAndABadValueIsNamed) {
+  expect_bool_key_on_loads_and_names_a_bad_value("bridge_unplaced_tracks", &AssociationOptions::bridge_unplaced_tracks,
+                                                 "often");
+}
+
 TEST(Association, DropInsideOtherClassKeyLoadsAndABadValueIsNamed) {
   expect_bool_key_on_loads_and_names_a_bad_value("drop_inside_other_class",
                                                  &AssociationOptions::drop_inside_other_class, "2");
