@@ -42,10 +42,18 @@ fs::path write_sample(const fs::path& dir) {
 bool have_xvfb() { return run_command("command -v xvfb-run >/dev/null") == 0; }
 
 // 'wardmap render-map ARGS' under a fresh virtual display.
+// Up to three attempts when the X server, not wardmap, failed: `xvfb-run -a` picks a display that
+// another Xvfb on the shared machine can take between its check and its server's start ("bad X
+// server connection", seen under load even with the tests serialised).
 CliResult render_under_xvfb(const std::string& args) {
   CliResult r;
-  r.code = run_command("xvfb-run -a -s '-screen 0 1280x1024x24' " + shq(binary_dir() / "apps" / "wardmap") + " render-map " + args,
-                       &r.output);
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    r.output.clear();
+    r.code = run_command(
+        "xvfb-run -a -s '-screen 0 1280x1024x24' " + shq(binary_dir() / "apps" / "wardmap") + " render-map " + args,
+        &r.output);
+    if (r.code == 0 || r.output.find("bad X server connection") == std::string::npos) break;
+  }
   return r;
 }
 
