@@ -5,12 +5,15 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <thread>
 
 #include "hdp/crf_sampler.h"
 #include "hdp/suffix_swap.h"
+#include "mot/hungarian.h"
 #include "mot/tracker.h"
 #include "semantics/object_metrics.h"
 #include "semantics/pose_selection.h"
@@ -206,6 +209,52 @@ int link_through_unplaced_tracks(const std::vector<std::vector<int>>& unplaced,
   for (auto& d : dish_of)
     if (d >= 0) d = root_of(dish, d);
   return merged;
+}
+
+void reassign_by_projection(std::vector<ObjectLandmark>& landmarks, const std::vector<ObjectMeasurement>& ms,
+                            const KeyframeViews& views, double min_iou, double margin, bool placed_too) {
+  std::map<int, int> landmark_of;  // measurement id -> landmark index
+  for (size_t l = 0; l < landmarks.size(); ++l)
+    for (int id : landmarks[l].measurements) landmark_of[id] = static_cast<int>(l);
+  std::map<int, std::vector<int>> by_keyframe;
+  for (const auto& [id, l] : landmark_of) by_keyframe[ms[id].keyframe].push_back(id);
+  bool changed = false;
+  for (const auto& [kf, ids] : by_keyframe) {
+    if (kf < 0 || kf >= static_cast<int>(views.T_wc.size())) continue;
+    std::vector<int> rows;
+    std::set<int> taken;  // landmarks held in this keyframe by a measurement that stays
+    for (int id : ids) {
+      const int l = landmark_of[id];
+      if (ms[id].pose && (!placed_too || landmarks[l].pose_measurement == id)) taken.insert(l);
+      else rows.push_back(id);
+    }
+    if (rows.empty()) continue;
+    std::vector<int> cols;
+    std::vector<std::optional<Eigen::Vector4d>> projections;
+    for (size_t l = 0; l < landmarks.size(); ++l)
+      if (!taken.count(static_cast<int>(l))) {
+        cols.push_back(static_cast<int>(l));
+        projections.push_back(projected_box(landmarks[l].pose, views, kf));
+      }
+    if (cols.empty()) continue;
+    Eigen::MatrixXd cost = Eigen::MatrixXd::Constant(rows.size(), cols.size(), std::numeric_limits<double>::infinity());
+    for (size_t i = 0; i < rows.size(); ++i)
+      for (size_t j = 0; j < cols.size(); ++j) {
+        const ObjectMeasurement& m = ms[rows[i]];
+        if (!projections[j] || landmarks[cols[j]].label != m.label) continue;
+        const double iou = box_iou(*projections[j], m.box);
+        if (iou < min_iou) continue;
+        cost(i, j) = -(iou + (cols[j] == landmark_of[rows[i]] ? margin : 0.0));
+      }
+    for (const auto& [i, j] : mot::solve_assignment(cost, -min_iou).matches)
+      if (landmark_of[rows[i]] != cols[j]) {
+        landmark_of[rows[i]] = cols[j];
+        changed = true;
+      }
+  }
+  if (!changed) return;
+  for (auto& l : landmarks) l.measurements.clear();
+  for (const auto& [id, l] : landmark_of) landmarks[l].measurements.push_back(id);
 }
 
 void drop_landmarks_inside_other_classes(std::vector<ObjectLandmark>& landmarks,
@@ -529,6 +578,8 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   if (options.association.merge_contained && !hdp_only) merge_contained_landmarks(candidates, place, never_together);
   if (options.association.drop_inside_other_class && !hdp_only)
     drop_landmarks_inside_other_classes(candidates, options.support_classes);
+  if (ao.reproject != "none" && views && !hdp_only)
+    reassign_by_projection(candidates, ms, *views, ao.reproject_min_iou, ao.reproject_margin, ao.reproject == "all");
   for (auto& l : candidates) {
     l.id = static_cast<int>(r.landmarks.size());
     for (int id : l.measurements) r.landmark_of[id] = l.id;

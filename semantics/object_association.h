@@ -76,6 +76,17 @@ struct KeyframeViews {
   std::vector<slam::SE3> T_wc;  // per keyframe index
 };
 
+// A measurement joins a landmark through its MOT track and, if placed, its pose; where the track
+// erred (an occluded chair's box, a far door a few pixels wide) or the pose was measured on another
+// object, the landmarks' projections tell (association.reproject, our addition). Per keyframe, the
+// measurements without a pose (with `placed_too`, every measurement but the ones that gave their
+// landmark its pose) are assigned to the landmarks the others leave free by their box's IoU with
+// each same-class landmark's projected 3-D box (Hungarian), their current landmark favoured by
+// `margin`; a pair under `min_iou` is never made, and a measurement left unmatched keeps its
+// landmark. Landmark poses are kept: they decided the projections.
+void reassign_by_projection(std::vector<ObjectLandmark>& landmarks, const std::vector<ObjectMeasurement>& ms,
+                            const KeyframeViews& views, double min_iou, double margin, bool placed_too);
+
 // MOT inside one keyframe group (Assoc. III-A.1): runs a fresh tracker over the group's keyframes
 // in order; returns for every measurement of those keyframes its track id (-1 when the tracker
 // dropped it). `by_keyframe[k]` lists the measurement ids of keyframe k. With `views`, a track's

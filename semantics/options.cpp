@@ -57,6 +57,8 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(association.min_measurements, 1, 10000, "association.min_measurements");
   c(association.min_placed_measurements, 1, 10000, "association.min_placed_measurements");
   c(association.border_min_measurements, 1, 10000, "association.border_min_measurements");
+  c(association.reproject_min_iou, 0, 1, "association.reproject_min_iou");
+  c(association.reproject_margin, 0, 1, "association.reproject_margin");
   c(association.border_min_placed_measurements, 1, 10000, "association.border_min_placed_measurements");
   c(association.border_touch_px, 0, 1e4, "association.border_touch_px");
   c(association.border_reprojection_iou, 0, 1, "association.border_reprojection_iou");
@@ -83,6 +85,9 @@ std::optional<std::string> SemanticOptions::validate() const {
   const auto& far_end = measurement.mask_to_far_end;
   if (c.err.tellp() == 0 && far_end != "none" && far_end != "same_class" && far_end != "all")
     c.err << "key 'semantics.measurement.mask_to_far_end': must be none, same_class or all, got '" << far_end << "'";
+  const auto& reproject = association.reproject;
+  if (c.err.tellp() == 0 && reproject != "none" && reproject != "unplaced" && reproject != "all")
+    c.err << "key 'semantics.association.reproject': must be none, unplaced or all, got '" << reproject << "'";
   if (c.err.tellp() != 0) return c.err.str();
   if (auto e = association.crf.validate()) return "key 'semantics.association.crf': " + *e;
   if (auto e = tracker.validate()) return "key 'semantics.tracker': " + *e;
@@ -153,6 +158,9 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(a, "semantics.association", "merge_contained", o.association.merge_contained, file);
   read_option(a, "semantics.association", "drop_inside_other_class", o.association.drop_inside_other_class, file);
   read_option(a, "semantics.association", "bridge_unplaced_tracks", o.association.bridge_unplaced_tracks, file);
+  read_option(a, "semantics.association", "reproject", o.association.reproject, file);
+  read_option(a, "semantics.association", "reproject_min_iou", o.association.reproject_min_iou, file);
+  read_option(a, "semantics.association", "reproject_margin", o.association.reproject_margin, file);
   read_option(a, "semantics.association", "chains", o.association.chains, file);
   read_option(a, "semantics.association", "threads", o.association.threads, file);
   read_option(m, "semantics.measurement", "max_size_ratio", o.measurement.max_size_ratio, file);

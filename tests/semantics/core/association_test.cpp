@@ -583,6 +583,88 @@ TEST(Association, BridgeUnplacedTracksKeyLoadsAndABadValueIsNamed) {
                                                  "often");
 }
 
+// Two chairs side by side 4 m ahead of a still camera: in keyframe 0 both are placed; in keyframe 1
+// their boxes got no pose and MOT swapped them; in keyframe 2 only the right chair is seen, without
+// a pose, on the left chair's track, while a placed measurement of the right chair holds its
+// landmark; in keyframe 3 an unplaced box lies where no chair projects.
+TEST(Association, UnplacedMeasurementsFollowTheLandmarksProjections) {
+  slam::PinholeCamera cam;
+  cam.fx = cam.fy = 525, cam.cx = 319.5, cam.cy = 239.5, cam.width = 640, cam.height = 480;
+  const KeyframeViews views{cam, std::vector<slam::SE3>(4)};
+  const Eigen::Vector3d size(0.5, 0.5, 0.85);
+  const std::vector<Eigen::Vector3d> chair = {{-0.6, 0.5, 4.0}, {0.6, 0.5, 4.0}};
+  const auto box_of = [&](const Eigen::Vector3d& c) {
+    Eigen::Vector4d b(1e9, 1e9, -1e9, -1e9);
+    for (int k = 0; k < 8; ++k) {
+      const Eigen::Vector3d corner(k & 1 ? 0.5 : -0.5, k & 2 ? 0.5 : -0.5, k & 4 ? 0.5 : -0.5);
+      const Eigen::Vector2d uv = cam.project(c + corner.cwiseProduct(size));
+      b = Eigen::Vector4d(std::min(b(0), uv.x()), std::min(b(1), uv.y()), std::max(b(2), uv.x()), std::max(b(3), uv.y()));
+    }
+    return b;
+  };
+  std::vector<ObjectMeasurement> ms;
+  const auto add = [&](int kf, const Eigen::Vector4d& box, bool placed, const Eigen::Vector3d& c) {
+    ObjectMeasurement m;
+    m.id = static_cast<int>(ms.size());
+    m.keyframe = kf;
+    m.box = box;
+    m.label = "chair";
+    if (placed) m.pose = ObjectPose{slam::SE3(Eigen::Quaterniond::Identity(), c), size};
+    ms.push_back(m);
+    return m.id;
+  };
+  const int l0 = add(0, box_of(chair[0]), true, chair[0]), r0 = add(0, box_of(chair[1]), true, chair[1]);
+  // Keyframe 1's boxes are the detector's, a fifth narrower on each side than the projections (IoU 0.6).
+  const auto narrower = [](Eigen::Vector4d b) {
+    const double d = 0.2 * (b(2) - b(0));
+    b(0) += d, b(2) -= d;
+    return b;
+  };
+  const int l1 = add(1, narrower(box_of(chair[0])), false, chair[0]);
+  const int r1 = add(1, narrower(box_of(chair[1])), false, chair[1]);
+  const int r2 = add(2, box_of(chair[1]), true, chair[1]), r2u = add(2, box_of(chair[1]), false, chair[1]);
+  const int far = add(3, Eigen::Vector4d(10, 10, 60, 90), false, chair[0]);
+  std::vector<ObjectLandmark> lms(2);
+  for (int i = 0; i < 2; ++i) {
+    lms[i].label = "chair";
+    lms[i].pose = ObjectPose{slam::SE3(Eigen::Quaterniond::Identity(), chair[i]), size};
+  }
+  lms[0].measurements = {l0, r1, r2u, far};  // the swapped and the stray boxes on the left chair
+  lms[1].measurements = {r0, l1, r2};
+  reassign_by_projection(lms, ms, views, 0.3, 0.2, false);
+  EXPECT_EQ(lms[0].measurements, (std::vector<int>{l0, l1, r2u, far}));
+  EXPECT_EQ(lms[1].measurements, (std::vector<int>{r0, r1, r2}));
+  // With a minimum IoU above theirs, the tracks' landmarks stay.
+  lms[0].measurements = {l0, r1, r2u, far};
+  lms[1].measurements = {r0, l1, r2};
+  reassign_by_projection(lms, ms, views, 0.7, 0.2, false);
+  EXPECT_EQ(lms[0].measurements, (std::vector<int>{l0, r1, r2u, far}));
+  // With placed measurements too: keyframe 0's placed boxes swapped, but the left chair's gave its
+  // landmark its pose and stays; keyframe 2's placed box of the right chair then frees nothing for
+  // its unplaced twin, which stays on the left chair.
+  lms[0].measurements = {r0, l1, r2u};
+  lms[1].measurements = {l0, r1, r2};
+  lms[0].pose_measurement = r0;
+  lms[1].pose_measurement = r2;
+  reassign_by_projection(lms, ms, views, 0.3, 0.2, true);
+  EXPECT_EQ(lms[0].measurements, (std::vector<int>{r0, l1, r2u}));
+  EXPECT_EQ(lms[1].measurements, (std::vector<int>{l0, r1, r2}));
+  lms[0].pose_measurement = -1;  // no pose measurement among them: keyframe 0's swap is undone
+  lms[1].pose_measurement = -1;
+  reassign_by_projection(lms, ms, views, 0.3, 0.2, true);
+  EXPECT_EQ(lms[0].measurements, (std::vector<int>{l0, l1, r2u}));  // r2 keeps the right chair (margin)
+  EXPECT_EQ(lms[1].measurements, (std::vector<int>{r0, r1, r2}));
+  EXPECT_EQ(SemanticOptions().association.reproject, "all");
+  const auto o = load_semantic_options(
+      YAML::Load("association: {reproject: unplaced, reproject_min_iou: 0.4, reproject_margin: 0.1}"), "s.yaml");
+  EXPECT_EQ(o.association.reproject, "unplaced");
+  EXPECT_DOUBLE_EQ(o.association.reproject_min_iou, 0.4);
+  EXPECT_DOUBLE_EQ(o.association.reproject_margin, 0.1);
+  test::expect_load_error_names("association: {reproject_min_iou: 1.5}", "association.reproject_min_iou");
+  test::expect_load_error_names("association: {reproject_margin: -0.1}", "association.reproject_margin");
+  test::expect_load_error_names("association: {reproject: placed}", "association.reproject");
+}
+
 TEST(Association, DropInsideOtherClassKeyLoadsAndABadValueIsNamed) {
   expect_bool_key_on_loads_and_names_a_bad_value("drop_inside_other_class",
                                                  &AssociationOptions::drop_inside_other_class, "2");
