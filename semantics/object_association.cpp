@@ -171,7 +171,9 @@ int root_of(std::vector<int>& parent, int i) {
 
 int link_through_unplaced_tracks(const std::vector<std::vector<int>>& unplaced,
                                  const std::vector<std::string>& unplaced_labels,
-                                 const std::vector<std::string>& dish_labels, const std::vector<bool>& reportable,
+                                 const std::vector<std::string>& dish_labels,
+                                 const std::vector<std::vector<int>>& dish_measurements,
+                                 const std::vector<bool>& reportable,
                                  const std::function<bool(const std::vector<int>&, const std::vector<int>&)>& never_together,
                                  std::vector<int>& dish_of) {
   // Tracks: unplaced group objects of one class sharing a detection.
@@ -190,9 +192,6 @@ int link_through_unplaced_tracks(const std::vector<std::vector<int>>& unplaced,
       if (dish_of[id] >= 0 && dish_labels[dish_of[id]] == unplaced_labels[i])
         touched[root_of(track, static_cast<int>(i))].insert(dish_of[id]);
 
-  std::vector<std::vector<int>> dish_measurements(dish_labels.size());
-  for (size_t id = 0; id < dish_of.size(); ++id)
-    if (dish_of[id] >= 0) dish_measurements[dish_of[id]].push_back(static_cast<int>(id));
   std::vector<int> dish(dish_labels.size());
   for (size_t k = 0; k < dish.size(); ++k) dish[k] = static_cast<int>(k);
   int merged = 0;
@@ -522,16 +521,17 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
       if (dish_of[m.id] >= 0) dish_measurements[dish_of[m.id]].push_back(m.id);
   };
   collect_dish_measurements();
+  std::vector<std::string> dish_labels(result.num_dishes);
+  for (int k = 0; k < result.num_dishes; ++k) dish_labels[k] = objects[dish_objects[k].front()].label;
+  // Enough measurements, enough of them placed, without the side-border minimums.
+  const auto meets_minimums = [&](const std::vector<int>& ids) {
+    return static_cast<int>(ids.size()) >= ao.min_measurements && placed_count(ids) >= ao.min_placed_measurements;
+  };
   if (ao.bridge_unplaced_tracks && !hdp_only) {
-    std::vector<std::string> dish_labels(result.num_dishes);
     std::vector<bool> reportable(result.num_dishes);
-    for (int k = 0; k < result.num_dishes; ++k) {
-      if (!dish_objects[k].empty()) dish_labels[k] = objects[dish_objects[k].front()].label;
-      reportable[k] = static_cast<int>(dish_measurements[k].size()) >= ao.min_measurements &&
-                      placed_count(dish_measurements[k]) >= ao.min_placed_measurements;
-    }
-    if (link_through_unplaced_tracks(unplaced, unplaced_labels, dish_labels, reportable, never_measured_together,
-                                     dish_of) > 0)
+    for (int k = 0; k < result.num_dishes; ++k) reportable[k] = meets_minimums(dish_measurements[k]);
+    if (link_through_unplaced_tracks(unplaced, unplaced_labels, dish_labels, dish_measurements, reportable,
+                                     never_measured_together, dish_of) > 0)
       collect_dish_measurements();
   }
 
@@ -553,7 +553,7 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   };
   for (int k = 0; k < result.num_dishes; ++k) {
     const int placed = placed_count(dish_measurements[k]);
-    const std::string& label = objects[dish_objects[k].front()].label;
+    const std::string& label = dish_labels[k];
     // Seen mostly at the image's left or right border: fewer measurements, fewer placed for the
     // thin classes (association.border_min_measurements, border_min_placed_measurements).
     int min_count = ao.min_measurements, min_placed = ao.min_placed_measurements;
@@ -568,8 +568,7 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
     l.measurements = dish_measurements[k];
     place(l);
     candidates.push_back(std::move(l));
-    border_only.push_back(static_cast<int>(dish_measurements[k].size()) < ao.min_measurements ||
-                          placed < ao.min_placed_measurements);
+    border_only.push_back(!meets_minimums(dish_measurements[k]));
   }
   if (views) drop_border_landmarks_on_others(candidates, border_only, ms, *views, options.association.border_reprojection_iou);
   const auto never_together = [&](const ObjectLandmark& a, const ObjectLandmark& b) {

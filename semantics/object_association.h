@@ -49,14 +49,17 @@ void merge_contained_landmarks(
 // that runs through keyframes without poses (a bed seen from above, cut by the bottom border)
 // leaves a gap the HDP cannot see across (association.bridge_unplaced_tracks, our addition).
 // `unplaced` holds those group objects (measurement ids, `unplaced_labels` their classes);
-// `dish_of` gives each measurement's landmark (dish) or -1, `dish_labels` each dish's class.
+// `dish_of` gives each measurement's landmark (dish) or -1, `dish_labels` each dish's class and
+// `dish_measurements` its measurement ids (in id order, as `dish_of` gives them).
 // Unplaced group objects of one class sharing a detection (an overlapping keyframe) form one track;
 // the same-class dishes a track touches that are each `reportable` (a fragment below the reporting
 // minimums is no second object) are merged into the first when `never_together` holds for the
 // pair (their lists of measurement ids). `dish_of` is rewritten; returns the dishes merged away.
 int link_through_unplaced_tracks(const std::vector<std::vector<int>>& unplaced,
                                  const std::vector<std::string>& unplaced_labels,
-                                 const std::vector<std::string>& dish_labels, const std::vector<bool>& reportable,
+                                 const std::vector<std::string>& dish_labels,
+                                 const std::vector<std::vector<int>>& dish_measurements,
+                                 const std::vector<bool>& reportable,
                                  const std::function<bool(const std::vector<int>&, const std::vector<int>&)>& never_together,
                                  std::vector<int>& dish_of);
 

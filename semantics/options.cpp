@@ -57,11 +57,11 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(association.min_measurements, 1, 10000, "association.min_measurements");
   c(association.min_placed_measurements, 1, 10000, "association.min_placed_measurements");
   c(association.border_min_measurements, 1, 10000, "association.border_min_measurements");
-  c(association.reproject_min_iou, 0, 1, "association.reproject_min_iou");
-  c(association.reproject_margin, 0, 1, "association.reproject_margin");
   c(association.border_min_placed_measurements, 1, 10000, "association.border_min_placed_measurements");
   c(association.border_touch_px, 0, 1e4, "association.border_touch_px");
   c(association.border_reprojection_iou, 0, 1, "association.border_reprojection_iou");
+  c(association.reproject_min_iou, 0, 1, "association.reproject_min_iou");
+  c(association.reproject_margin, 0, 1, "association.reproject_margin");
   c(association.chains, 1, 64, "association.chains");
   c(association.threads, 1, 64, "association.threads");
   c(measurement.max_size_ratio, 1, 100, "measurement.max_size_ratio");

@@ -530,9 +530,10 @@ TEST(Association, UnplacedTrackBridgesTheLandmarksItTouches) {
   const std::vector<std::string> dish_labels = {"bed", "bed", "chair"};
   const std::vector<bool> all(3, true);
   const std::vector<int> before = {0, 0, 0, -1, -1, -1, -1, 1, 1, 1, 2};
+  const std::vector<std::vector<int>> dms = {{0, 1, 2}, {7, 8, 9}, {10}};
   const auto never = [](const std::vector<int>&, const std::vector<int>&) { return true; };
   auto d = before;
-  EXPECT_EQ(link_through_unplaced_tracks(unplaced, beds, dish_labels, all, never, d), 1);
+  EXPECT_EQ(link_through_unplaced_tracks(unplaced, beds, dish_labels, dms, all, never, d), 1);
   EXPECT_EQ(d, (std::vector<int>{0, 0, 0, -1, -1, -1, -1, 0, 0, 0, 2}));
   d = before;
   const auto seen_together = [](const std::vector<int>& a, const std::vector<int>& b) {
@@ -540,13 +541,13 @@ TEST(Association, UnplacedTrackBridgesTheLandmarksItTouches) {
     EXPECT_EQ(b, (std::vector<int>{7, 8, 9}));
     return false;
   };
-  EXPECT_EQ(link_through_unplaced_tracks(unplaced, beds, dish_labels, all, seen_together, d), 0);
+  EXPECT_EQ(link_through_unplaced_tracks(unplaced, beds, dish_labels, dms, all, seen_together, d), 0);
   EXPECT_EQ(d, before);
-  EXPECT_EQ(link_through_unplaced_tracks(unplaced, beds, dish_labels, {true, false, true}, never, d), 0);
+  EXPECT_EQ(link_through_unplaced_tracks(unplaced, beds, dish_labels, dms, {true, false, true}, never, d), 0);
   EXPECT_EQ(d, before);
-  EXPECT_EQ(link_through_unplaced_tracks({{2, 3, 4}}, {"bed"}, dish_labels, all, never, d), 0);  // a gap, no bridge
-  EXPECT_EQ(link_through_unplaced_tracks(unplaced, {"chair", "chair"}, dish_labels, all, never, d), 0);
-  EXPECT_EQ(link_through_unplaced_tracks(unplaced, {"bed", "chair"}, dish_labels, all, never, d), 0);
+  EXPECT_EQ(link_through_unplaced_tracks({{2, 3, 4}}, {"bed"}, dish_labels, dms, all, never, d), 0);  // a gap, no bridge
+  EXPECT_EQ(link_through_unplaced_tracks(unplaced, {"chair", "chair"}, dish_labels, dms, all, never, d), 0);
+  EXPECT_EQ(link_through_unplaced_tracks(unplaced, {"bed", "chair"}, dish_labels, dms, all, never, d), 0);
   EXPECT_EQ(d, before);
   // Through the whole association (groups of 6 keyframes overlapping by 2): the bed's track with
   // poses in keyframes 0-3 and 10-13, 2 m apart, none in group 1's keyframes 4-9. Without the
