@@ -231,10 +231,15 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
     if (zs.empty()) return std::nullopt;
     edge_depth = percentile(zs, 0.5);
   }
+  // An axis class (a pole) rises above the furniture in front of it (a bed's footboard, a chair):
+  // its window starts at a point of the box's upper half, which shows its shaft.
+  const bool axis = options.axis_classes.count(label) > 0;
+  const int mid_row = (y0 + y1) / 2;
   size_t begin = 0, end = 0;
   for (size_t i = 0, j = 0; i < samples.size(); ++i) {
     while (j < samples.size() && samples[j].z <= samples[i].z + band) ++j;
     if (edge_depth >= 0 && !(samples[i].z <= edge_depth && edge_depth <= samples[i].z + band)) continue;
+    if (axis && samples[i].y > mid_row) continue;
     if (j - i > end - begin) begin = i, end = j;
     if (thin && j - i >= need) break;
   }
@@ -378,7 +383,9 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
     // box may be the object's back or the wall it stands against.
     const double sign = view.dot(R.col(k)) >= 0 ? 1.0 : -1.0;
     const double front = sign > 0 ? lo(k) : hi(k);
-    centre += (front + sign * 0.5 * expected - centre.dot(R.col(k))) * R.col(k);
+    // An axis class's points are mostly its shaft: their median depth along k is the axis.
+    const double along = axis ? percentile(ax[k], 0.5) : front + sign * 0.5 * expected;
+    centre += (along - centre.dot(R.col(k))) * R.col(k);
     size(k) = expected;
     // A thin class is measured on its nearest surface only (a chair's seat edge and front legs): its
     // seen width and height fall short of the object's. The centre stays; the box gets the class's

@@ -164,11 +164,31 @@ TEST(Measurement, TallClassFartherThanItsBoxHeightAllowsGetsNoPose) {
   const cv::Mat pole = scene(9.0, 5.0, 300, 340, 150, 330);
   const auto p = measure_pose_from_depth(pole, camera(), slam::SE3(), box, up, "iv_pole", o);
   ASSERT_TRUE(p);
-  EXPECT_NEAR(p->pose.translation().z(), 5.25, 0.1);  // the front face at 5 m, pushed back by half 0.5 m
+  EXPECT_NEAR(p->pose.translation().z(), 5.0, 0.1);  // a pole (axis class) stands where its shaft is seen
   o.measurement.tall_depth_ratio = 0;  // off: the wall is taken for the pole
   const auto off = measure_pose_from_depth(wall, camera(), slam::SE3(), box, up, "iv_pole", o);
   ASSERT_TRUE(off);
   EXPECT_GT(off->pose.translation().z(), 8.9);
+}
+
+// A pole beside a bed's foot: the footboard (nearer, across the box's lower rows) fills more of the
+// box than the shaft. The pole is placed on its shaft, seen in the box's upper half, not on the
+// footboard, and its centre is the shaft's axis, not the seen surface pushed back by half the class.
+TEST(Measurement, AxisClassIsPlacedOnItsShaftAboveWhatStandsInFront) {
+  SemanticOptions o;
+  const Eigen::Vector3d up(0, -1, 0);
+  const Eigen::Vector4d box(300, 150, 340, 330);  // 180 rows: 1.8 m at 5 m with f = 500
+  cv::Mat d(480, 640, CV_32F, cv::Scalar(9.0f));
+  d(cv::Rect(316, 150, 8, 180)).setTo(5.0);  // the shaft, 8 px wide
+  d(cv::Rect(290, 260, 60, 70)).setTo(4.3);  // the footboard in front of its lower part
+  const auto p = measure_pose_from_depth(d, camera(), slam::SE3(), box, up, "iv_pole", o);
+  ASSERT_TRUE(p);
+  EXPECT_NEAR(p->pose.translation().z(), 5.0, 0.05);
+  EXPECT_NEAR(p->pose.translation().x(), 0.0, 0.05);
+  o.axis_classes.clear();  // measured as a thin class: the nearest window is the footboard's
+  const auto front = measure_pose_from_depth(d, camera(), slam::SE3(), box, up, "iv_pole", o);
+  ASSERT_TRUE(front);
+  EXPECT_LT(front->pose.translation().z(), 4.7);
 }
 
 // A cabinet behind a bed, seen beside it: the bed's box holds the cabinet's, yet only the bed's own
