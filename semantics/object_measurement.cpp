@@ -82,6 +82,19 @@ bool hidden_by(const std::vector<OccluderMask>& masks, int x, int y, const Eigen
   return false;
 }
 
+// Where the ray through a pixel meets the plane through on_plane with the given normal (none when
+// the ray runs along the plane or meets it behind the camera).
+std::optional<Eigen::Vector3d> ray_meets_plane(const slam::PinholeCamera& cam, const slam::SE3& T_wc,
+                                               const Eigen::Vector2d& pixel, const Eigen::Vector3d& on_plane,
+                                               const Eigen::Vector3d& normal) {
+  const Eigen::Vector3d ray = T_wc.rotation() * cam.unproject(pixel);
+  const double facing = ray.dot(normal);
+  if (std::abs(facing) < 1e-6) return std::nullopt;
+  const double t = (on_plane - T_wc.translation()).dot(normal) / facing;
+  if (t <= 0) return std::nullopt;
+  return Eigen::Vector3d(T_wc.translation() + t * ray);
+}
+
 // Which image borders the box touches.
 struct BorderCut {
   bool left = false, right = false, top = false, bottom = false;
@@ -341,12 +354,9 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
     edge /= n;
     const Eigen::Vector3d normal = R.col(1 - a);
     const Eigen::Vector2d edge_pixel(cut.left ? box(2) : box(0), cam.project(T_cw * edge).y());
-    const Eigen::Vector3d ray = T_wc.rotation() * cam.unproject(edge_pixel);
-    const double facing = ray.dot(normal);
-    if (std::abs(facing) < 1e-6) return std::nullopt;
-    const double t = (edge - T_wc.translation()).dot(normal) / facing;
-    if (t <= 0) return std::nullopt;
-    const double end_a = (T_wc.translation() + t * ray).dot(R.col(a));
+    const auto end_point = ray_meets_plane(cam, T_wc, edge_pixel, edge, normal);
+    if (!end_point) return std::nullopt;
+    const double end_a = end_point->dot(R.col(a));
     const double seen = sign > 0 ? hi(a) - end_a : end_a - lo(a);
     // The class's horizontal sizes the seen part can be a piece of (10 % tolerance); two unlike ones
     // (a bed's width or length) leave the completion unknown: no pose. So does an end far from the
@@ -363,6 +373,22 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
     cut_axis = a;
     cut_other = full <= small ? large : small;
   }
+  // A flat class's face (a door) ends where the rays through the box's left and right edges meet
+  // it: the trimmed points' 5-95 % extent falls short of both ends, more at the near end of an
+  // oblique face (nearer columns hold more points per metre). A grazing face keeps the points' extent.
+  const bool flat = std::min(cs[0], cs[1]) <= o.flat_ratio * std::max(cs[0], cs[1]);
+  if (flat && !side) {
+    const int a = hi(0) - lo(0) >= hi(1) - lo(1) ? 0 : 1;
+    const Eigen::Vector3d mid = R * (0.5 * (lo + hi));
+    const double row = cam.project(T_wc.inverse() * mid).y();
+    const auto e0 = ray_meets_plane(cam, T_wc, Eigen::Vector2d(box(0), row), mid, R.col(1 - a));
+    const auto e1 = ray_meets_plane(cam, T_wc, Eigen::Vector2d(box(2), row), mid, R.col(1 - a));
+    if (e0 && e1) {
+      const double s0 = std::min(e0->dot(R.col(a)), e1->dot(R.col(a)));
+      const double s1 = std::max(e0->dot(R.col(a)), e1->dot(R.col(a)));
+      if (s0 <= lo(a) && s1 >= hi(a) && s1 - s0 <= 1.25 * std::max(cs[0], cs[1])) lo(a) = s0, hi(a) = s1;
+    }
+  }
   size = (hi - lo).cwiseMax(0.02);
   Eigen::Vector3d centre = R * (0.5 * (lo + hi));
 
@@ -374,7 +400,10 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
     view.normalize();
     // The horizontal object axis closer to the viewing direction is the hidden depth.
     int k = std::abs(view.dot(R.col(0))) > std::abs(view.dot(R.col(1))) ? 0 : 1;
-    if (cut_axis >= 0) k = 1 - cut_axis;
+    if (cut_axis >= 0)
+      k = 1 - cut_axis;
+    else if (flat)
+      k = size(0) < size(1) ? 0 : 1;  // a flat class's face normal
     // The class's horizontal size that is not the seen width is the hidden depth.
     const double other_seen = size(1 - k);
     const double expected = cut_axis >= 0 ? cut_other

@@ -31,6 +31,7 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(measurement.occluder_footprint_px, 0, 10000, "measurement.occluder_footprint_px");
   c(measurement.occluder_inflate, 0, 1, "measurement.occluder_inflate");
   c(measurement.thin_support, 0.001, 1, "measurement.thin_support");
+  c(measurement.flat_ratio, 0, 1, "measurement.flat_ratio");
   c(measurement.occluded_bottom_share, 0, 2, "measurement.occluded_bottom_share");
   c(measurement.bottom_face_band, 0, 1, "measurement.bottom_face_band");
   c(measurement.bottom_cut_reach, 0, 1, "measurement.bottom_cut_reach");
@@ -113,6 +114,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   read_option(m, "semantics.measurement", "support_containment", o.measurement.support_containment, file);
   read_option(m, "semantics.measurement", "support_area_ratio", o.measurement.support_area_ratio, file);
   read_option(m, "semantics.measurement", "thin_support", o.measurement.thin_support, file);
+  read_option(m, "semantics.measurement", "flat_ratio", o.measurement.flat_ratio, file);
   read_option(m, "semantics.measurement", "occluded_bottom_share", o.measurement.occluded_bottom_share, file);
   read_option(m, "semantics.measurement", "bottom_face_band", o.measurement.bottom_face_band, file);
   read_option(m, "semantics.measurement", "bottom_cut_reach", o.measurement.bottom_cut_reach, file);

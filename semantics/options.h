@@ -65,6 +65,12 @@ struct MeasurementOptions {
   // the cut side (false: no pose). Objects at the edge of a turn are seen no other way.
   bool complete_side_cuts = true;
   double side_cut_min_slope = 20;  // px per metre along the seen face: below, the face runs along the ray
+  // A flat class (its smaller horizontal size at most flat_ratio times its larger: a door) always
+  // shows its face, from any side: the hidden depth is the axis its seen points are thinnest along,
+  // not the one closer to the line of sight. Seen obliquely down a corridor, a door's width is the
+  // axis closer to the line of sight, and was pushed back by half its width (synthetic doors 0.08-0.14
+  // m too far along their wall). 0: off.
+  double flat_ratio = 0.2;
   // Two detections of one keyframe measured at one place (horizontal centres closer than this times
   // the smaller class's smaller horizontal size): an occluded object measured on its occluder. The
   // farther one (its box ends higher by occluder_footprint_px) loses its pose; when neither is

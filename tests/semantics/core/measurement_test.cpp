@@ -191,6 +191,32 @@ TEST(Measurement, AxisClassIsPlacedOnItsShaftAboveWhatStandsInFront) {
   EXPECT_LT(front->pose.translation().z(), 4.7);
 }
 
+// A door on a side wall (the plane x = 1 m), seen obliquely down the corridor: it spans z = 3-3.9 m.
+// Its width is the axis closer to the line of sight, yet it is its face normal that hides a depth,
+// and its ends are where the rays through the box's edges meet the face.
+TEST(Measurement, ObliqueFlatFaceIsPlacedBetweenItsBoxEdges) {
+  SemanticOptions o;
+  const Eigen::Vector3d up(0, -1, 0);
+  const auto cam = camera();
+  cv::Mat d(480, 640, CV_32F, cv::Scalar(0.0f));
+  for (int u = 330; u < 640; ++u) d.col(u).setTo(cam.fx / (u - cam.cx));  // z-depth of the wall x = 1
+  const double top = -0.85, floor = 1.2;  // the door's top and foot (y down)
+  const Eigen::Vector4d box(cam.cx + cam.fx / 3.9, cam.cy + cam.fy * top / 3.0, cam.cx + cam.fx / 3.0,
+                            cam.cy + cam.fy * floor / 3.0);
+  const auto p = measure_pose_from_depth(d, cam, slam::SE3(), box, up, "door", o);
+  ASSERT_TRUE(p);
+  EXPECT_NEAR(p->pose.translation().z(), 3.45, 0.03);
+  EXPECT_NEAR(p->pose.translation().x(), 1.0 + 0.03, 0.02);  // pushed back by half the door's 0.06
+  EXPECT_NEAR(p->size.x(), 0.9, 0.05);
+  o.measurement.flat_ratio = 0;  // off: the width is taken for the hidden depth
+  const auto off = measure_pose_from_depth(d, cam, slam::SE3(), box, up, "door", o);
+  ASSERT_TRUE(off);
+  EXPECT_GT(off->pose.translation().z(), 3.5);
+  EXPECT_DOUBLE_EQ(load_semantic_options(YAML::Load("measurement: {flat_ratio: 0.1}"), "s.yaml").measurement.flat_ratio,
+                   0.1);
+  test::expect_load_error_names("measurement: {flat_ratio: 1.5}", "semantics.measurement.flat_ratio");
+}
+
 // A cabinet behind a bed, seen beside it: the bed's box holds the cabinet's, yet only the bed's own
 // pixels (inside its measured 3-D box) are left out, so the cabinet keeps a pose.
 TEST(Measurement, MeasuredOccluderHidesOnlyItsOwnPixels) {
