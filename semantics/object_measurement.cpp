@@ -21,9 +21,33 @@ double percentile(std::vector<double>& v, double q) {
 
 Eigen::Vector3d estimate_up(const std::vector<slam::SE3>& poses) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (const auto& T : poses) sum -= T.rotation_matrix().col(1);
+  Eigen::Matrix3d rights = Eigen::Matrix3d::Zero();  // sum of x x^T over the cameras' right axes
+  Eigen::Vector3d right_sum = Eigen::Vector3d::Zero();
+  for (const auto& T : poses) {
+    const Eigen::Matrix3d R = T.rotation_matrix();
+    sum -= R.col(1);
+    rights += R.col(0) * R.col(0).transpose();
+    right_sum += R.col(0);
+  }
   if (sum.norm() < 1e-9) return Eigen::Vector3d::UnitZ();
-  return sum.normalized();
+  const Eigen::Vector3d mean_up = sum.normalized();
+  // A camera looking down (a robot's, or a hand-held one at a table) tilts its -y axis towards its
+  // view: the synthetic ward's cameras pitch 11-23 degrees down, and the mean -y axis leaned 12.6
+  // degrees, tilting every measured box. Cameras seldom roll, so their right axes are horizontal:
+  // once they have turned enough (the right axes spread over a plane), up is the direction
+  // orthogonal to all of them, the eigenvector of the smallest eigenvalue of sum(x x^T).
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(rights);
+  const double n = static_cast<double>(poses.size());
+  constexpr double kMinTurnSpread = 0.02;  // per camera: right axes spread over +-14 degrees of yaw or more
+  if (eig.eigenvalues()(1) - eig.eigenvalues()(0) >= kMinTurnSpread * n) {
+    const Eigen::Vector3d up = eig.eigenvectors().col(0);
+    return up.dot(mean_up) >= 0 ? up : Eigen::Vector3d(-up);
+  }
+  // Never turned: only the mean right axis is known to be horizontal.
+  if (right_sum.norm() < 1e-9) return mean_up;
+  const Eigen::Vector3d x = right_sum.normalized();
+  const Eigen::Vector3d up = mean_up - mean_up.dot(x) * x;
+  return up.norm() < 1e-9 ? mean_up : Eigen::Vector3d(up.normalized());
 }
 
 Eigen::Matrix3d upright_rotation(const Eigen::Vector3d& up, const Eigen::Vector3d& axis) {

@@ -89,8 +89,9 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
                                                               const std::vector<std::string>& labels,
                                                               const Eigen::Vector3d& up, const SemanticOptions& options);
 
-// The world's up direction from camera poses: the mean of their -y axes (cameras are held roughly
-// upright), normalised.
+// The world's up direction from camera poses, which seldom roll but may look down: orthogonal to
+// their right (x) axes once those span a plane (the camera has turned), on the side of the mean of
+// their -y axes; before that, the mean -y axis made orthogonal to the mean right axis.
 Eigen::Vector3d estimate_up(const std::vector<slam::SE3>& camera_poses);
 
 // A rotation with z along `up` and x along the horizontal direction of `axis` (canonical sign).

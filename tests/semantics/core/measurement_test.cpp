@@ -421,5 +421,30 @@ TEST(Measurement, UpFromCameraPoses) {
   EXPECT_LT((estimate_up({T, T}) - Eigen::Vector3d::UnitZ()).norm(), 1e-12);
 }
 
+// Cameras looking 18 degrees down (the synthetic ward's robot) while turning: their -y axes lean
+// towards their views, their right axes stay horizontal, and up is found orthogonal to those.
+TEST(Measurement, UpFromCamerasThatLookDown) {
+  const auto camera_at = [](double yaw_deg, double pitch_deg) {
+    const double yaw = yaw_deg * M_PI / 180, pitch = pitch_deg * M_PI / 180;
+    // Level camera looking along world x (camera z = x, x = -y, y = -z), turned by yaw about z,
+    // then pitched down about its own x axis.
+    Eigen::Matrix3d level;
+    level << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * level *
+                              Eigen::AngleAxisd(-pitch, Eigen::Vector3d::UnitX()).toRotationMatrix();
+    return slam::SE3(R, Eigen::Vector3d::Zero());
+  };
+  std::vector<slam::SE3> turning;
+  for (int yaw = 0; yaw <= 90; yaw += 10) turning.push_back(camera_at(yaw, 18));
+  ASSERT_GT(-turning.front().rotation_matrix().col(2).z(), 0.3);  // it does look down
+  const Eigen::Vector3d up = estimate_up(turning);
+  EXPECT_LT(std::acos(std::min(1.0, up.z())) * 180 / M_PI, 0.01);
+  // Never turning, the pitch cannot be told from the right axes: up stays orthogonal to them.
+  const std::vector<slam::SE3> straight(3, camera_at(30, 18));
+  const Eigen::Vector3d still = estimate_up(straight);
+  EXPECT_LT(std::abs(still.dot(straight.front().rotation_matrix().col(0))), 1e-9);
+  EXPECT_NEAR(std::acos(still.z()) * 180 / M_PI, 18, 0.01);
+}
+
 }  // namespace
 }  // namespace wardmap::semantics
