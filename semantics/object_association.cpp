@@ -551,18 +551,20 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
     l.pose_measurement = ids[pick];
     l.pose = poses[pick];
   };
-  for (int k = 0; k < result.num_dishes; ++k) {
-    const int placed = placed_count(dish_measurements[k]);
-    const std::string& label = dish_labels[k];
+  const auto reportable = [&](const std::vector<int>& ids, const std::string& label) {
+    const int placed = placed_count(ids);
     // Seen mostly at the image's left or right border: fewer measurements, fewer placed for the
     // thin classes (association.border_min_measurements, border_min_placed_measurements).
     int min_count = ao.min_measurements, min_placed = ao.min_placed_measurements;
-    if (views && !hdp_only && mostly_at_side_border(dish_measurements[k], ms, views->camera, ao.border_touch_px)) {
+    if (views && !hdp_only && mostly_at_side_border(ids, ms, views->camera, ao.border_touch_px)) {
       min_count = std::min(min_count, ao.border_min_measurements);
       min_placed = std::min(min_placed, options.thin_classes.count(label) ? ao.border_min_placed_measurements : min_count);
     }
-    if (static_cast<int>(dish_measurements[k].size()) < min_count || placed < min_placed || placed == 0)
-      continue;
+    return static_cast<int>(ids.size()) >= min_count && placed >= min_placed && placed > 0;
+  };
+  for (int k = 0; k < result.num_dishes; ++k) {
+    const std::string& label = dish_labels[k];
+    if (!reportable(dish_measurements[k], label)) continue;
     ObjectLandmark l;
     l.label = label;
     l.measurements = dish_measurements[k];
@@ -577,8 +579,14 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   if (options.association.merge_contained && !hdp_only) merge_contained_landmarks(candidates, place, never_together);
   if (options.association.drop_inside_other_class && !hdp_only)
     drop_landmarks_inside_other_classes(candidates, options.support_classes);
-  if (ao.reproject != "none" && views && !hdp_only)
+  if (ao.reproject != "none" && views && !hdp_only) {
     reassign_by_projection(candidates, ms, *views, ao.reproject_min_iou, ao.reproject_margin, ao.reproject == "all");
+    // A landmark whose measurements the projections gave to others, down to its pinned pose
+    // measurement (a fragment placed 2 m off), is no longer reported: its last measurements drop.
+    std::vector<bool> gone(candidates.size());
+    for (size_t i = 0; i < candidates.size(); ++i) gone[i] = !reportable(candidates[i].measurements, candidates[i].label);
+    erase_gone(candidates, gone);
+  }
   for (auto& l : candidates) {
     l.id = static_cast<int>(r.landmarks.size());
     for (int id : l.measurements) r.landmark_of[id] = l.id;

@@ -511,7 +511,8 @@ TEST(Association, BorderLandmarkWhereAnotherOfItsClassProjectsIsDropped) {
   const AssociationResult r = associate_objects(ms, groups, o, &views);
   ASSERT_EQ(r.landmarks.size(), 1u);
   EXPECT_EQ(r.landmarks[0].measurements, (std::vector<int>{5, 6, 7, 8, 9}));
-  o.association.border_reprojection_iou = 0.99;  // no projection matches this well: the fragment stays
+  o.association.border_reprojection_iou = 0.99;  // no projection matches this well: the fragment stays,
+  o.association.reproject = "none";  // unless the projections take its measurements (then it drops too)
   EXPECT_EQ(associate_objects(ms, groups, o, &views).landmarks.size(), 2u);
   EXPECT_DOUBLE_EQ(load_semantic_options(YAML::Load("association: {border_reprojection_iou: 0.4}"), "s.yaml")
                        .association.border_reprojection_iou,
@@ -577,6 +578,50 @@ TEST(Association, UnplacedTrackBridgesTheLandmarksItTouches) {
   EXPECT_EQ(r.landmarks[0].measurements, (std::vector<int>{0, 1, 2, 3, 4, 5, 8, 9, 10, 11, 12, 13}));
   o.association.bridge_unplaced_tracks = false;
   EXPECT_EQ(associate_objects(ms, groups, o).landmarks.size(), 2u);
+}
+
+// A chair 4 m ahead of a still camera, seen in keyframes 0-5 and again in 10-12, which measured it
+// 2 m too far (another look, too: their embedding differs): a fragment landmark of 3 measurements. Its boxes
+// lie on the chair's projection, so the landmarks' projections give two of them to the chair; the
+// fragment, left with its pinned pose measurement, is no longer reported.
+TEST(Association, LandmarkLeftBelowTheMinimumsByTheProjectionsIsDropped) {
+  slam::PinholeCamera cam;
+  cam.fx = cam.fy = 525, cam.cx = 319.5, cam.cy = 239.5, cam.width = 640, cam.height = 480;
+  const KeyframeViews views{cam, std::vector<slam::SE3>(13)};
+  const Eigen::Vector3d chair(0, 0.5, 4.0), size(0.5, 0.5, 0.85);
+  Eigen::Vector4d box(1e9, 1e9, -1e9, -1e9);
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector3d corner(c & 1 ? 0.5 : -0.5, c & 2 ? 0.5 : -0.5, c & 4 ? 0.5 : -0.5);
+    const Eigen::Vector2d uv = cam.project(chair + corner.cwiseProduct(size));
+    box = Eigen::Vector4d(std::min(box(0), uv.x()), std::min(box(1), uv.y()), std::max(box(2), uv.x()),
+                          std::max(box(3), uv.y()));
+  }
+  std::vector<ObjectMeasurement> ms;
+  for (int kf : {0, 1, 2, 3, 4, 5, 10, 11, 12}) {
+    ObjectMeasurement m;
+    m.id = static_cast<int>(ms.size());
+    m.keyframe = kf;
+    m.timestamp = kf * 0.1;
+    m.box = box;
+    m.label = "chair";
+    m.score = 0.9f;
+    m.embedding = Eigen::VectorXf::Unit(8, kf < 10 ? 0 : 1);
+    m.gt_instance = 0;
+    m.pose = ObjectPose{slam::SE3(Eigen::Quaterniond::Identity(), chair + Eigen::Vector3d(0, 0, kf < 10 ? 0.0 : 5.0)), size};
+    ms.push_back(m);
+  }
+  SemanticOptions o;
+  const auto groups = groups_of(13, o.groups.size, o.groups.overlap);
+  // The test's world is the camera's frame (y down): the footprint of the merge would take the
+  // fragment's depth for a height, and merge it.
+  o.association.merge_contained = false;
+  o.association.reproject = "none";
+  ASSERT_EQ(associate_objects(ms, groups, o, &views).landmarks.size(), 2u);  // the fragment is a landmark
+  o.association.reproject = "all";
+  const AssociationResult r = associate_objects(ms, groups, o, &views);
+  ASSERT_EQ(r.landmarks.size(), 1u);
+  EXPECT_EQ(r.landmarks[0].measurements.size(), 8u);
+  EXPECT_EQ(std::count(r.landmark_of.begin(), r.landmark_of.end(), -1), 1);
 }
 
 TEST(Association, BridgeUnplacedTracksKeyLoadsAndABadValueIsNamed) {
