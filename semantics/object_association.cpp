@@ -523,9 +523,13 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   collect_dish_measurements();
   std::vector<std::string> dish_labels(result.num_dishes);
   for (int k = 0; k < result.num_dishes; ++k) dish_labels[k] = objects[dish_objects[k].front()].label;
-  // Enough measurements, enough of them placed, without the side-border minimums.
+  // Enough measurements, enough of them placed (one at least: a landmark takes a placed one's pose).
+  const auto meets = [&](const std::vector<int>& ids, int min_count, int min_placed) {
+    return static_cast<int>(ids.size()) >= min_count && placed_count(ids) >= std::max(1, min_placed);
+  };
+  // Without the side-border minimums.
   const auto meets_minimums = [&](const std::vector<int>& ids) {
-    return static_cast<int>(ids.size()) >= ao.min_measurements && placed_count(ids) >= ao.min_placed_measurements;
+    return meets(ids, ao.min_measurements, ao.min_placed_measurements);
   };
   if (ao.bridge_unplaced_tracks && !hdp_only) {
     std::vector<bool> reportable(result.num_dishes);
@@ -552,7 +556,6 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
     l.pose = poses[pick];
   };
   const auto reportable = [&](const std::vector<int>& ids, const std::string& label) {
-    const int placed = placed_count(ids);
     // Seen mostly at the image's left or right border: fewer measurements, fewer placed for the
     // thin classes (association.border_min_measurements, border_min_placed_measurements).
     int min_count = ao.min_measurements, min_placed = ao.min_placed_measurements;
@@ -560,7 +563,7 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
       min_count = std::min(min_count, ao.border_min_measurements);
       min_placed = std::min(min_placed, options.thin_classes.count(label) ? ao.border_min_placed_measurements : min_count);
     }
-    return static_cast<int>(ids.size()) >= min_count && placed >= min_placed && placed > 0;
+    return meets(ids, min_count, min_placed);
   };
   for (int k = 0; k < result.num_dishes; ++k) {
     const std::string& label = dish_labels[k];

@@ -408,8 +408,7 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
     const auto e0 = ray_meets_plane(cam, T_wc, Eigen::Vector2d(box(0), row), mid, R.col(1 - a));
     const auto e1 = ray_meets_plane(cam, T_wc, Eigen::Vector2d(box(2), row), mid, R.col(1 - a));
     if (e0 && e1) {
-      const double s0 = std::min(e0->dot(R.col(a)), e1->dot(R.col(a)));
-      const double s1 = std::max(e0->dot(R.col(a)), e1->dot(R.col(a)));
+      const auto [s0, s1] = std::minmax({e0->dot(R.col(a)), e1->dot(R.col(a))});
       if (s0 <= lo(a) && s1 >= hi(a) && s1 - s0 <= 1.25 * std::max(cs[0], cs[1])) lo(a) = s0, hi(a) = s1;
     }
   }
