@@ -166,6 +166,12 @@ double run_slam_job(const SlamJob& job) {
     report["mapping"] = {{"keyframes", m.keyframes},         {"points_triangulated", m.triangulated},
                          {"points_culled", m.culled_points}, {"points_fused", m.fused},
                          {"keyframes_culled", m.culled_keyframes}};
+    // Wall time per mapped keyframe of each local-mapping stage (ms).
+    const double per_kf = m.keyframes > 0 ? 1e3 / m.keyframes : 0.0;
+    report["mapping_ms_per_keyframe"] = {
+        {"register", per_kf * m.t_register}, {"cull_points", per_kf * m.t_cull},
+        {"triangulate", per_kf * m.t_triangulate}, {"fuse", per_kf * m.t_fuse},
+        {"local_ba", per_kf * m.t_ba}, {"cull_keyframes", per_kf * m.t_cull_keyframes}};
   }
   double rate = -1;
   std::string md = "# wardmap run (SLAM front-process)\n\n- sequence: `" + job.sequence.string() + "`\n- mode: " + mode +
@@ -181,6 +187,16 @@ double run_slam_job(const SlamJob& job) {
         std::to_string(front.mapper_stats().ba_aborted) + "\n";
   std::snprintf(buf, sizeof buf, "- tracker waiting for the mapper (threaded, behind its time): %.1f s\n", wait_seconds);
   md += buf;
+  {
+    const auto& m = front.mapper_stats();
+    const double per_kf = m.keyframes > 0 ? 1e3 / m.keyframes : 0.0;
+    std::snprintf(buf, sizeof buf,
+                  "- local mapping per keyframe (%d): register %.1f ms, point culling %.1f ms, triangulation %.1f ms, "
+                  "fusion %.1f ms, local BA %.1f ms, keyframe culling %.1f ms\n",
+                  m.keyframes, per_kf * m.t_register, per_kf * m.t_cull, per_kf * m.t_triangulate, per_kf * m.t_fuse,
+                  per_kf * m.t_ba, per_kf * m.t_cull_keyframes);
+    md += buf;
+  }
   if (info.has_ground_truth && traj.size() >= 3) {
     const auto& gt = reader->ground_truth();
     const auto pairs = slam::eval::associate(gt, traj, {});

@@ -234,6 +234,11 @@ TEST(CliPipeline, RealtimeRunIsPacedAtTheSequencesRate) {
   std::ifstream in(dir / "run" / "report.json");
   const nlohmann::json report = nlohmann::json::parse(in);
   EXPECT_TRUE(report.at("realtime").get<bool>());
+  // The local-mapping stage times per keyframe: every stage reported, local BA ran.
+  const auto& stages = report.at("mapping_ms_per_keyframe");
+  for (const char* k : {"register", "cull_points", "triangulate", "fuse", "local_ba", "cull_keyframes"})
+    EXPECT_GE(stages.at(k).get<double>(), 0.0) << k;
+  EXPECT_GT(stages.at("local_ba").get<double>(), 0.0) << stages.dump();
   const CliResult both =
       wardmap_cli("-q run " + shq(dir / "seq") + " --realtime --deterministic --out " + shq(dir / "run2"));
   EXPECT_NE(both.code, 0);
