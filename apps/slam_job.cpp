@@ -188,13 +188,13 @@ double run_slam_job(const SlamJob& job) {
   std::snprintf(buf, sizeof buf, "- tracker waiting for the mapper (threaded, behind its time): %.1f s\n", wait_seconds);
   md += buf;
   {
-    const auto& m = front.mapper_stats();
-    const double per_kf = m.keyframes > 0 ? 1e3 / m.keyframes : 0.0;
+    const json& t = report["mapping_ms_per_keyframe"];
+    const auto ms = [&](const char* stage) { return t.at(stage).get<double>(); };
     std::snprintf(buf, sizeof buf,
                   "- local mapping per keyframe (%d): register %.1f ms, point culling %.1f ms, triangulation %.1f ms, "
                   "fusion %.1f ms, local BA %.1f ms, keyframe culling %.1f ms\n",
-                  m.keyframes, per_kf * m.t_register, per_kf * m.t_cull, per_kf * m.t_triangulate, per_kf * m.t_fuse,
-                  per_kf * m.t_ba, per_kf * m.t_cull_keyframes);
+                  front.mapper_stats().keyframes, ms("register"), ms("cull_points"), ms("triangulate"), ms("fuse"),
+                  ms("local_ba"), ms("cull_keyframes"));
     md += buf;
   }
   if (info.has_ground_truth && traj.size() >= 3) {
