@@ -155,18 +155,22 @@ TEST(Measurement, CoincidentPosesKeepTheClearlyNearerOne) {
 
 // A pole's box holds few of its pixels; when its depth window lands on the wall far behind, the
 // box's height tells: a 1.8 m pole filling 180 rows stands about 5 m away, not 9.
+// An iv pole in the box of the two pole tests below (180 rows: 1.8 m at 5 m with f = 500), seen by
+// an upright camera at the origin.
+std::optional<ObjectPose> measure_pole(const cv::Mat& depth, const SemanticOptions& o) {
+  return measure_pose_from_depth(depth, camera(), slam::SE3(), Eigen::Vector4d(300, 150, 340, 330),
+                                 Eigen::Vector3d(0, -1, 0), "iv_pole", o);
+}
+
 TEST(Measurement, TallClassFartherThanItsBoxHeightAllowsGetsNoPose) {
   SemanticOptions o;
-  const Eigen::Vector3d up(0, -1, 0);
-  const Eigen::Vector4d box(300, 150, 340, 330);  // 180 rows: 1.8 m at 5 m with f = 500
   const cv::Mat wall = scene(9.0, 9.0, 0, 1, 0, 1);
-  EXPECT_FALSE(measure_pose_from_depth(wall, camera(), slam::SE3(), box, up, "iv_pole", o));
-  const cv::Mat pole = scene(9.0, 5.0, 300, 340, 150, 330);
-  const auto p = measure_pose_from_depth(pole, camera(), slam::SE3(), box, up, "iv_pole", o);
+  EXPECT_FALSE(measure_pole(wall, o));
+  const auto p = measure_pole(scene(9.0, 5.0, 300, 340, 150, 330), o);
   ASSERT_TRUE(p);
   EXPECT_NEAR(p->pose.translation().z(), 5.0, 0.1);  // a pole (axis class) stands where its shaft is seen
   o.measurement.tall_depth_ratio = 0;  // off: the wall is taken for the pole
-  const auto off = measure_pose_from_depth(wall, camera(), slam::SE3(), box, up, "iv_pole", o);
+  const auto off = measure_pole(wall, o);
   ASSERT_TRUE(off);
   EXPECT_GT(off->pose.translation().z(), 8.9);
 }
@@ -176,17 +180,15 @@ TEST(Measurement, TallClassFartherThanItsBoxHeightAllowsGetsNoPose) {
 // footboard, and its centre is the shaft's axis, not the seen surface pushed back by half the class.
 TEST(Measurement, AxisClassIsPlacedOnItsShaftAboveWhatStandsInFront) {
   SemanticOptions o;
-  const Eigen::Vector3d up(0, -1, 0);
-  const Eigen::Vector4d box(300, 150, 340, 330);  // 180 rows: 1.8 m at 5 m with f = 500
   cv::Mat d(480, 640, CV_32F, cv::Scalar(9.0f));
   d(cv::Rect(316, 150, 8, 180)).setTo(5.0);  // the shaft, 8 px wide
   d(cv::Rect(290, 260, 60, 70)).setTo(4.3);  // the footboard in front of its lower part
-  const auto p = measure_pose_from_depth(d, camera(), slam::SE3(), box, up, "iv_pole", o);
+  const auto p = measure_pole(d, o);
   ASSERT_TRUE(p);
   EXPECT_NEAR(p->pose.translation().z(), 5.0, 0.05);
   EXPECT_NEAR(p->pose.translation().x(), 0.0, 0.05);
   o.axis_classes.clear();  // measured as a thin class: the nearest window is the footboard's
-  const auto front = measure_pose_from_depth(d, camera(), slam::SE3(), box, up, "iv_pole", o);
+  const auto front = measure_pole(d, o);
   ASSERT_TRUE(front);
   EXPECT_LT(front->pose.translation().z(), 4.7);
 }
