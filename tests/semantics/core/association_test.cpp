@@ -11,6 +11,7 @@
 #include "semantics/association_model.h"
 #include "semantics/object_association.h"
 #include "tests/semantics/core/options_error.h"
+#include "tests/support/test_camera.h"
 
 namespace wardmap::semantics {
 namespace {
@@ -580,22 +581,27 @@ TEST(Association, UnplacedTrackBridgesTheLandmarksItTouches) {
   EXPECT_EQ(associate_objects(ms, groups, o).landmarks.size(), 2u);
 }
 
+// The image box of an axis-aligned 3-D box (centre, size) seen by a camera at the origin, world =
+// camera frame.
+Eigen::Vector4d image_box(const slam::PinholeCamera& cam, const Eigen::Vector3d& centre, const Eigen::Vector3d& size) {
+  Eigen::Vector4d b(1e9, 1e9, -1e9, -1e9);
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3d corner(k & 1 ? 0.5 : -0.5, k & 2 ? 0.5 : -0.5, k & 4 ? 0.5 : -0.5);
+    const Eigen::Vector2d uv = cam.project(centre + corner.cwiseProduct(size));
+    b = Eigen::Vector4d(std::min(b(0), uv.x()), std::min(b(1), uv.y()), std::max(b(2), uv.x()), std::max(b(3), uv.y()));
+  }
+  return b;
+}
+
 // A chair 4 m ahead of a still camera, seen in keyframes 0-5 and again in 10-12, which measured it
 // 2 m too far (another look, too: their embedding differs): a fragment landmark of 3 measurements. Its boxes
 // lie on the chair's projection, so the landmarks' projections give two of them to the chair; the
 // fragment, left with its pinned pose measurement, is no longer reported.
 TEST(Association, LandmarkLeftBelowTheMinimumsByTheProjectionsIsDropped) {
-  slam::PinholeCamera cam;
-  cam.fx = cam.fy = 525, cam.cx = 319.5, cam.cy = 239.5, cam.width = 640, cam.height = 480;
+  const slam::PinholeCamera cam = test::vga_camera(525);
   const KeyframeViews views{cam, std::vector<slam::SE3>(13)};
   const Eigen::Vector3d chair(0, 0.5, 4.0), size(0.5, 0.5, 0.85);
-  Eigen::Vector4d box(1e9, 1e9, -1e9, -1e9);
-  for (int c = 0; c < 8; ++c) {
-    const Eigen::Vector3d corner(c & 1 ? 0.5 : -0.5, c & 2 ? 0.5 : -0.5, c & 4 ? 0.5 : -0.5);
-    const Eigen::Vector2d uv = cam.project(chair + corner.cwiseProduct(size));
-    box = Eigen::Vector4d(std::min(box(0), uv.x()), std::min(box(1), uv.y()), std::max(box(2), uv.x()),
-                          std::max(box(3), uv.y()));
-  }
+  const Eigen::Vector4d box = image_box(cam, chair, size);
   std::vector<ObjectMeasurement> ms;
   for (int kf : {0, 1, 2, 3, 4, 5, 10, 11, 12}) {
     ObjectMeasurement m;
@@ -634,20 +640,11 @@ TEST(Association, BridgeUnplacedTracksKeyLoadsAndABadValueIsNamed) {
 // a pose, on the left chair's track, while a placed measurement of the right chair holds its
 // landmark; in keyframe 3 an unplaced box lies where no chair projects.
 TEST(Association, UnplacedMeasurementsFollowTheLandmarksProjections) {
-  slam::PinholeCamera cam;
-  cam.fx = cam.fy = 525, cam.cx = 319.5, cam.cy = 239.5, cam.width = 640, cam.height = 480;
+  const slam::PinholeCamera cam = test::vga_camera(525);
   const KeyframeViews views{cam, std::vector<slam::SE3>(4)};
   const Eigen::Vector3d size(0.5, 0.5, 0.85);
   const std::vector<Eigen::Vector3d> chair = {{-0.6, 0.5, 4.0}, {0.6, 0.5, 4.0}};
-  const auto box_of = [&](const Eigen::Vector3d& c) {
-    Eigen::Vector4d b(1e9, 1e9, -1e9, -1e9);
-    for (int k = 0; k < 8; ++k) {
-      const Eigen::Vector3d corner(k & 1 ? 0.5 : -0.5, k & 2 ? 0.5 : -0.5, k & 4 ? 0.5 : -0.5);
-      const Eigen::Vector2d uv = cam.project(c + corner.cwiseProduct(size));
-      b = Eigen::Vector4d(std::min(b(0), uv.x()), std::min(b(1), uv.y()), std::max(b(2), uv.x()), std::max(b(3), uv.y()));
-    }
-    return b;
-  };
+  const auto box_of = [&](const Eigen::Vector3d& c) { return image_box(cam, c, size); };
   std::vector<ObjectMeasurement> ms;
   const auto add = [&](int kf, const Eigen::Vector4d& box, bool placed, const Eigen::Vector3d& c) {
     ObjectMeasurement m;
