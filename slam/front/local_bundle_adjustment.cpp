@@ -120,6 +120,7 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
     ceres::Problem::Options po;
     po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    po.disable_all_safety_checks = true;  // the blocks are ours and valid; saves time building
     ceres::Problem problem(po);
     ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::EuclideanManifold<3>> pose_manifold;
     auto* ordering = new ceres::ParameterBlockOrdering;
@@ -133,12 +134,13 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
       double* pose = pose_blocks[pose_index.at(o.keyframe->id())].data();
       double* point = position_blocks[position_index.at(o.point->id())].data();
       problem.AddResidualBlock(costs[i].get(), loss, pose, point);
-      ordering->AddElementToGroup(point, 0);
-      ordering->AddElementToGroup(pose, 1);
     }
+    for (auto& x : position_blocks)
+      if (problem.HasParameterBlock(x.data())) ordering->AddElementToGroup(x.data(), 0);
     for (const auto& [id, i] : pose_index) {
       auto& p = pose_blocks[i];
       if (!problem.HasParameterBlock(p.data())) continue;
+      ordering->AddElementToGroup(p.data(), 1);
       problem.SetManifold(p.data(), &pose_manifold);
       if (constant.count(id)) problem.SetParameterBlockConstant(p.data());
     }
