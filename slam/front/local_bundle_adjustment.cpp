@@ -147,6 +147,7 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
     ceres::Solver::Options so;
     so.linear_solver_type = ceres::DENSE_SCHUR;
     so.linear_solver_ordering.reset(ordering);
+    so.jacobi_scaling = false;
     so.max_num_iterations = iterations;
     so.logging_type = ceres::SILENT;
     so.num_threads = 1;
