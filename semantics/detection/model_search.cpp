@@ -26,6 +26,12 @@ fs::path find_model_file(const fs::path& relative, const fs::path& models_dir) {
     if (fs::is_regular_file(relative)) return relative;
     throw InputError(relative.string(), "model file not found");
   }
+  // A folder the user named (flag, settings or environment) that does not exist is a mistake, not
+  // a reason to fall back silently on the next place.
+  if (!models_dir.empty() && !fs::is_directory(models_dir))
+    throw InputError(models_dir.string(), "models folder not found (given as --models or detection.models_dir)");
+  if (const char* env = std::getenv("WARDMAP_MODELS"); env && *env && !fs::is_directory(env))
+    throw InputError(env, "models folder not found (given as $WARDMAP_MODELS)");
   std::string looked;
   for (const fs::path& dir : model_search_path(models_dir)) {
     const fs::path candidate = dir / relative;

@@ -127,6 +127,18 @@ TEST(ModelSearch, MissingModelNamesEveryPlaceSearched) {
   EXPECT_EQ(model_search_path().back().filename(), "models");
 }
 
+TEST(ModelSearch, MissingModelsFolderIsAnError) {
+  const fs::path absent = wardmap::test::scratch_dir() / "absent";
+  try {
+    find_model_file("yolox-nano/yolox_nano_416x416.onnx", absent);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), absent.string());
+    EXPECT_NE(std::string(e.what()).find("models folder not found"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(find_embedder_file(absent), InputError);
+}
+
 TEST(ModelSearch, FactoryReportsMissingWeights) {
   const fs::path dir = wardmap::test::scratch_dir();
   std::ifstream in(default_model_description("yolox"));
