@@ -26,6 +26,9 @@ struct RunArgs {
 };
 
 void run(RunArgs& a) {
+  // Checked before the run, not when its outputs are written at the end.
+  if (!a.job.out.empty() && std::filesystem::exists(a.job.out) && !std::filesystem::is_directory(a.job.out))
+    throw InputError(a.job.out.string(), "--out names a file; it must be a folder (new or existing)");
   if (a.poses == "slam") {
     spdlog::info("run: {} (SLAM front-process{})", a.job.sequence.string(), a.mode.empty() ? "" : ", " + a.mode);
     SlamJob s{a.job.sequence, a.job.settings, a.job.out, a.mode, a.job.progress, a.deterministic, a.vocabulary,

@@ -111,6 +111,15 @@ TEST(CliBadInput, UnknownLayout) {
   expect_one_line_error(wardmap_cli("info " + shq(root / "absent")), "no such file or folder");
 }
 
+TEST(CliBadInput, OutIsAFile) {
+  const fs::path root = scratch_dir();
+  make_tum(root);
+  write_text(root / "out.txt", "not a folder");
+  for (const char* poses : {"slam", "gt"})
+    expect_one_line_error(wardmap_cli("run " + shq(root) + " --poses " + poses + " --out " + shq(root / "out.txt")),
+                          "out.txt: --out names a file");
+}
+
 TEST(CliBadInput, NoPartialOutputOnError) {
   const fs::path dir = scratch_dir();
   write_text(dir / "gt.txt", "1 0 0 0 0 0 0 1\n2 1 0 0 0 0 0 1\n3 2 0 0 0 0 0 1\n4 2 1 0 0 0 0 1\n");
