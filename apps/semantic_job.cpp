@@ -84,7 +84,7 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
   options.association.crf.seed = job.seed;
   det.kind = job.detector;
   det.noise.seed = job.seed;
-  det.models_dir = job.models_dir;
+  if (!job.models_dir.empty()) det.models_dir = job.models_dir;  // --models over detection.models_dir
   det.landmark_set = !job.landmark_set.empty() ? job.landmark_set
                      : info.kind == slam::io::DatasetKind::Kitti ? "road"
                                                                  : "indoor";
@@ -92,7 +92,7 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
   setup->detector = semantics::make_detector(det, job.sequence);
   semantics::SemanticMapper::EmbedFn embed;
   if (job.embedding) {
-    auto embedder = std::make_shared<semantics::Embedder>(semantics::find_embedder_file(job.models_dir));
+    auto embedder = std::make_shared<semantics::Embedder>(semantics::find_embedder_file(det.models_dir));
     embed = [embedder](const cv::Mat& image, const Eigen::Vector4d& box) -> Eigen::VectorXf {
       try {
         return embedder->embed(image, box);

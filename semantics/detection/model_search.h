@@ -5,7 +5,8 @@
 //   2. $WARDMAP_MODELS (when set),
 //   3. <source tree>/../shared/models (compiled in),
 // and the first folder that holds the file wins. When none does, InputError names the file and every
-// place looked; a folder given in 1 or 2 that does not exist is an InputError naming it. Weights are never part of the repository (models/README.md says how to get them).
+// place looked; a folder given in 1 or 2 that does not exist is an InputError naming it. Weights are
+// never part of the repository (models/README.md says how to get them).
 #pragma once
 
 #include <filesystem>

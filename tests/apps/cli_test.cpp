@@ -120,6 +120,20 @@ TEST(CliBadInput, OutIsAFile) {
                           "out.txt: --out names a file");
 }
 
+TEST(CliBadInput, ModelsFolderFromSettingsIsUsedAndChecked) {
+  const fs::path root = scratch_dir();
+  make_tum(root);
+  const fs::path settings = root / "settings.yaml";
+  write_text(settings,
+             "%YAML:1.0\nCamera.type: \"PinHole\"\nCamera1.fx: 50.0\nCamera1.fy: 50.0\nCamera1.cx: 32.0\n"
+             "Camera1.cy: 24.0\nCamera.width: 64\nCamera.height: 48\nCamera.fps: 30\nRGBD.DepthMapFactor: 5000.0\n"
+             "detection:\n  models_dir: " + (root / "absent-models").string() + "\n");
+  expect_one_line_error(wardmap_cli("run " + shq(root) + " --poses gt --detector yolox --settings " + shq(settings) +
+                                    " --out " + shq(root / "run")),
+                        "absent-models: models folder not found");
+  EXPECT_FALSE(fs::exists(root / "run"));
+}
+
 TEST(CliBadInput, NoPartialOutputOnError) {
   const fs::path dir = scratch_dir();
   write_text(dir / "gt.txt", "1 0 0 0 0 0 0 1\n2 1 0 0 0 0 0 1\n3 2 0 0 0 0 0 1\n4 2 1 0 0 0 0 1\n");
