@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <fstream>
 #include <memory>
 
 #include "apps/commands/commands.h"
@@ -22,6 +23,17 @@ void add_semantic_options(CLI::App* cmd, SemanticJob& job);  // run.cpp
 
 namespace {
 
+// The folder's name, also when given with a trailing slash (a shell completion).
+std::string folder_name(const fs::path& path) {
+  const fs::path p = path.lexically_normal();
+  return (p.has_filename() ? p.filename() : p.parent_path().filename()).string();
+}
+
+void require_object_ground_truth(const fs::path& seq) {
+  for (const char* f : {"objects.json", "annotations.jsonl"})
+    if (!fs::exists(seq / f)) throw InputError((seq / f).string(), "not found: object ground truth comes from wardmap synth sequences");
+}
+
 struct EvalObjectsArgs {
   std::string run, sequence, json, align = "se3";
 };
@@ -30,8 +42,19 @@ void eval_objects(const EvalObjectsArgs& a) {
   const fs::path run = a.run, seq = a.sequence;
   for (const char* f : {"measurements.jsonl", "objects.json", "trajectory.txt"})
     if (!fs::exists(run / f)) throw InputError((run / f).string(), "not found: is this a wardmap run folder?");
-  for (const char* f : {"objects.json", "annotations.jsonl"})
-    if (!fs::exists(seq / f)) throw InputError((seq / f).string(), "not found: object ground truth comes from wardmap synth sequences");
+  require_object_ground_truth(seq);
+  // A run of another sequence would be scored against the wrong objects without a word (the synthetic
+  // sequences share their timestamps, so the trajectories still pair up).
+  if (fs::exists(run / "report.json")) {
+    std::ifstream in(run / "report.json");
+    const json report = json::parse(in, nullptr, false);
+    if (report.is_object() && report.contains("sequence") && report["sequence"].is_string()) {
+      const std::string made_on = folder_name(report["sequence"].get<std::string>());
+      if (made_on != folder_name(seq))
+        throw InputError((run / "report.json").string(),
+                         "the run was made on '" + made_on + "', not on '" + folder_name(seq) + "' (--sequence)");
+    }
+  }
   // The run's world onto the ground truth's, by the trajectory alignment of EVALUATION.md.
   slam::Sim3 align;
   if (a.align != "none") {
@@ -62,14 +85,13 @@ struct CompareArgs {
 };
 
 void compare(CompareArgs& a) {
+  for (const auto& s : a.sequences) require_object_ground_truth(s);  // before the table starts
   json rows = json::array();
   std::printf("%-28s | %-12s | %9s | %7s | %9s | %8s | %8s | %7s\n", "sequence", "association", "accuracy", "objects",
               "Object_GT", "pos.err", "max err", "ID sw.");
   std::printf("%s\n", std::string(110, '-').c_str());
   for (const auto& s : a.sequences) {
-    // The folder's name, also when given with a trailing slash (a shell completion).
-    const fs::path p = fs::path(s).lexically_normal();
-    const std::string name = (p.has_filename() ? p.filename() : p.parent_path().filename()).string();
+    const std::string name = folder_name(s);
     for (const char* mode : {"hdp-only", "hierarchical"}) {
       SemanticJob job = a.job;
       job.sequence = s;

@@ -269,5 +269,43 @@ TEST(CliPipeline, RealtimeRunIsPacedAtTheSequencesRate) {
   EXPECT_FALSE(fs::exists(dir / "run2" / "report.json"));
 }
 
+// eval-objects scores a run folder as the run itself did, refuses a run of another sequence, and
+// compare checks every sequence for object ground truth before its table starts.
+TEST(CliObjects, EvalObjectsAndCompare) {
+  const fs::path dir = scratch_dir();
+  ASSERT_EQ(wardmap_cli("-q synth --scenario ward --variant slow --frames 60 --out " + shq(dir / "ward")).code, 0);
+  const CliResult run =
+      wardmap_cli("-q run " + shq(dir / "ward") + " --poses gt --no-embedding --out " + shq(dir / "run"));
+  ASSERT_EQ(run.code, 0) << run.output;
+  const CliResult eval = wardmap_cli("-q eval-objects --run " + shq(dir / "run") + " --sequence " + shq(dir / "ward") +
+                                     " --json " + shq(dir / "eval.json"));
+  ASSERT_EQ(eval.code, 0) << eval.output;
+  std::ifstream report_in(dir / "run" / "report.json"), eval_in(dir / "eval.json");
+  const nlohmann::json report = nlohmann::json::parse(report_in), figures = nlohmann::json::parse(eval_in);
+  EXPECT_NEAR(figures.at("association_accuracy").get<double>(),
+              report.at("objects").at("association_accuracy").get<double>(), 1e-9);
+  EXPECT_EQ(figures.at("landmarks"), report.at("objects").at("landmarks"));
+  EXPECT_GT(figures.at("landmarks").get<int>(), 0);
+
+  ASSERT_EQ(wardmap_cli("-q synth --scenario aisle_straight --variant slow --frames 30 --out " + shq(dir / "aisle")).code, 0);
+  expect_one_line_error(wardmap_cli("-q eval-objects --run " + shq(dir / "run") + " --sequence " + shq(dir / "aisle")),
+                        "the run was made on 'ward', not on 'aisle'");
+
+  make_tum(dir / "tum");
+  const CliResult mixed = wardmap_cli("-q compare " + shq(dir / "ward") + " " + shq(dir / "tum") + " --no-embedding");
+  expect_one_line_error(mixed, "tum/objects.json: not found");
+  EXPECT_EQ(mixed.output.find("Object_GT"), std::string::npos) << "table started before the check:\n" << mixed.output;
+
+  const CliResult table =
+      wardmap_cli("-q compare " + shq(dir / "ward") + " --no-embedding --json " + shq(dir / "compare.json"));
+  ASSERT_EQ(table.code, 0) << table.output;
+  std::ifstream rows_in(dir / "compare.json");
+  const nlohmann::json rows = nlohmann::json::parse(rows_in);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].at("association"), "hdp-only");
+  EXPECT_EQ(rows[1].at("association"), "hierarchical");
+  EXPECT_NEAR(rows[1].at("accuracy").get<double>(), figures.at("association_accuracy").get<double>(), 1e-9);
+}
+
 }  // namespace
 }  // namespace wardmap::test
