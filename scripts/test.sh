@@ -22,6 +22,8 @@ cmake -S . -B "$BUILD" "${EXTRA[@]}"
 cmake --build "$BUILD" -j"$JOBS"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}  # off only for the VTK render tests (tests/semantics/render)
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
-export TSAN_OPTIONS=${TSAN_OPTIONS:-suppressions=$PWD/tests/sanitizers/tsan.supp second_deadlock_stack=1}
+# history_size=7: the longest access history, so that the other thread's stack of a report can be
+# restored and matched against the suppressions (tests/sanitizers/tsan.supp).
+export TSAN_OPTIONS=${TSAN_OPTIONS:-suppressions=$PWD/tests/sanitizers/tsan.supp second_deadlock_stack=1 history_size=7}
 cd "$BUILD"
 ctest --output-on-failure -j"$JOBS" --timeout 900
