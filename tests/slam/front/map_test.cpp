@@ -21,6 +21,21 @@ std::shared_ptr<const FrameFeatures> features() {
   return f;
 }
 
+// Up to 80 points on kf0's keypoint rays, at depth(i), each seen at the same keypoint by every
+// keyframe; then the covisibility graph.
+void observe_on_first_rays(Submap& map, const std::vector<std::shared_ptr<KeyFrame>>& kfs,
+                           const std::function<double(size_t)>& depth) {
+  const FrameFeatures& f = *features();
+  for (size_t i = 0; i < std::min<size_t>(80, f.points.size()); ++i) {
+    auto mp = map.create_map_point(camera().unproject(f.points[i]) * depth(i), *kfs[0]);
+    for (const auto& kf : kfs) {
+      mp->add_observation(kf, static_cast<int>(i));
+      kf->set_map_point(i, mp);
+    }
+  }
+  for (const auto& kf : kfs) kf->update_connections();
+}
+
 }  // namespace
 
 TEST(Submap, ObservationsBuildTheCovisibilityGraph) {
@@ -79,15 +94,7 @@ TEST(LocalBundleAdjustment, StopsAtTheIterationWhereAbortIsAsked) {
     }
     // Points at 2 m on the rays of kf0's keypoints, seen at the same keypoints by every keyframe:
     // the other keyframes' observations disagree with them, so the solver has work to do.
-    const FrameFeatures& f = *features();
-    for (size_t i = 0; i < std::min<size_t>(80, f.points.size()); ++i) {
-      auto mp = map.create_map_point(camera().unproject(f.points[i]) * 2.0, *kfs[0]);
-      for (auto& kf : kfs) {
-        mp->add_observation(kf, static_cast<int>(i));
-        kf->set_map_point(i, mp);
-      }
-    }
-    for (auto& kf : kfs) kf->update_connections();
+    observe_on_first_rays(map, kfs, [](size_t) { return 2.0; });
     FrontOptions o;
     return local_bundle_adjustment(kfs.back(), map, camera(), o, nullptr, abort);
   };
@@ -119,15 +126,7 @@ TEST(LocalBundleAdjustment, RecoversPerturbedKeyframePoses) {
     f.set_pose_cw(SE3(q, k == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0.01, -0.006 * k, 0.004)));
     kfs.push_back(map.create_keyframe(f));
   }
-  const FrameFeatures& f = *features();
-  for (size_t i = 0; i < std::min<size_t>(80, f.points.size()); ++i) {
-    auto mp = map.create_map_point(camera().unproject(f.points[i]) * (1.5 + 0.01 * static_cast<double>(i % 50)), *kfs[0]);
-    for (auto& kf : kfs) {
-      mp->add_observation(kf, static_cast<int>(i));
-      kf->set_map_point(i, mp);
-    }
-  }
-  for (auto& kf : kfs) kf->update_connections();
+  observe_on_first_rays(map, kfs, [](size_t i) { return 1.5 + 0.01 * static_cast<double>(i % 50); });
   FrontOptions o;
   const LocalBAResult r = local_bundle_adjustment(kfs.back(), map, camera(), o, nullptr, {});
   EXPECT_EQ(r.outliers, 0);
