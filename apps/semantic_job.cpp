@@ -110,6 +110,10 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
   const auto& info = reader->info();
   if (!job.keyframes && !info.has_ground_truth)
     throw InputError(job.sequence.string(), "--poses gt needs ground-truth poses, and this sequence has none");
+  if (!job.keyframes && !info.has_depth)  // every measurement would go without a pose
+    throw InputError(job.sequence.string(),
+                     "--poses gt measures objects from depth images, and this sequence has none "
+                     "(monocular: --poses slam --mode mono --objects)");
   std::unique_ptr<SemanticSetup> own_setup;
   SemanticSetup* setup = job.setup;
   if (!setup) setup = (own_setup = prepare_semantic_job(job)).get();

@@ -134,6 +134,18 @@ TEST(CliBadInput, ModelsFolderFromSettingsIsUsedAndChecked) {
   EXPECT_FALSE(fs::exists(root / "run"));
 }
 
+TEST(CliBadInput, GroundTruthPosesNeedDepth) {
+  const fs::path root = scratch_dir();
+  make_kitti(root);
+  write_text(root / "settings.yaml",
+             "%YAML:1.0\nCamera.type: \"PinHole\"\nCamera1.fx: 50.0\nCamera1.fy: 50.0\nCamera1.cx: 32.0\n"
+             "Camera1.cy: 24.0\nCamera.width: 64\nCamera.height: 48\nCamera.fps: 10\n");
+  expect_one_line_error(wardmap_cli("run " + shq(root) + " --poses gt --detector yolox --settings " +
+                                    shq(root / "settings.yaml") + " --out " + shq(root / "run")),
+                        "--poses gt measures objects from depth images, and this sequence has none");
+  EXPECT_FALSE(fs::exists(root / "run"));
+}
+
 TEST(CliBadInput, NoPartialOutputOnError) {
   const fs::path dir = scratch_dir();
   write_text(dir / "gt.txt", "1 0 0 0 0 0 0 1\n2 1 0 0 0 0 0 1\n3 2 0 0 0 0 0 1\n4 2 1 0 0 0 0 1\n");
