@@ -25,6 +25,13 @@ void expect_one_line_error(const CliResult& r, const std::string& must_contain) 
   EXPECT_NE(line.find(must_contain), std::string::npos) << r.output;
 }
 
+// Settings for the 64x48 fixtures (tests/slam/io/fixtures.h), with `extra` lines after the camera.
+void write_fixture_settings(const fs::path& file, const std::string& extra = "") {
+  write_text(file,
+             "%YAML:1.0\nCamera.type: \"PinHole\"\nCamera1.fx: 50.0\nCamera1.fy: 50.0\nCamera1.cx: 32.0\n"
+             "Camera1.cy: 24.0\nCamera.width: 64\nCamera.height: 48\nCamera.fps: 30\n" + extra);
+}
+
 TEST(Cli, HelpOnEveryCommand) {
   for (const char* cmd : {"", "info ", "eval "}) {
     const CliResult r = wardmap_cli(std::string(cmd) + "--help");
@@ -124,10 +131,8 @@ TEST(CliBadInput, ModelsFolderFromSettingsIsUsedAndChecked) {
   const fs::path root = scratch_dir();
   make_tum(root);
   const fs::path settings = root / "settings.yaml";
-  write_text(settings,
-             "%YAML:1.0\nCamera.type: \"PinHole\"\nCamera1.fx: 50.0\nCamera1.fy: 50.0\nCamera1.cx: 32.0\n"
-             "Camera1.cy: 24.0\nCamera.width: 64\nCamera.height: 48\nCamera.fps: 30\nRGBD.DepthMapFactor: 5000.0\n"
-             "detection:\n  models_dir: " + (root / "absent-models").string() + "\n");
+  write_fixture_settings(settings, "RGBD.DepthMapFactor: 5000.0\ndetection:\n  models_dir: " +
+                                       (root / "absent-models").string() + "\n");
   expect_one_line_error(wardmap_cli("run " + shq(root) + " --poses gt --detector yolox --settings " + shq(settings) +
                                     " --out " + shq(root / "run")),
                         "absent-models: models folder not found");
@@ -137,9 +142,7 @@ TEST(CliBadInput, ModelsFolderFromSettingsIsUsedAndChecked) {
 TEST(CliBadInput, GroundTruthPosesNeedDepth) {
   const fs::path root = scratch_dir();
   make_kitti(root);
-  write_text(root / "settings.yaml",
-             "%YAML:1.0\nCamera.type: \"PinHole\"\nCamera1.fx: 50.0\nCamera1.fy: 50.0\nCamera1.cx: 32.0\n"
-             "Camera1.cy: 24.0\nCamera.width: 64\nCamera.height: 48\nCamera.fps: 10\n");
+  write_fixture_settings(root / "settings.yaml");
   expect_one_line_error(wardmap_cli("run " + shq(root) + " --poses gt --detector yolox --settings " +
                                     shq(root / "settings.yaml") + " --out " + shq(root / "run")),
                         "--poses gt measures objects from depth images, and this sequence has none");
