@@ -26,14 +26,15 @@ fs::path find_model_file(const fs::path& relative, const fs::path& models_dir) {
     if (fs::is_regular_file(relative)) return relative;
     throw InputError(relative.string(), "model file not found");
   }
-  // A folder the user named (flag, settings or environment) that does not exist is a mistake, not
-  // a reason to fall back silently on the next place.
-  if (!models_dir.empty() && !fs::is_directory(models_dir))
-    throw InputError(models_dir.string(), "models folder not found (given as --models or detection.models_dir)");
-  if (const char* env = std::getenv("WARDMAP_MODELS"); env && *env && !fs::is_directory(env))
-    throw InputError(env, "models folder not found (given as $WARDMAP_MODELS)");
+  // A folder the user named (flag, settings or environment: all but the last, compiled-in place)
+  // that does not exist is a mistake, not a reason to fall back silently on the next place.
+  const std::vector<fs::path> dirs = model_search_path(models_dir);
+  for (size_t i = 0; i + 1 < dirs.size(); ++i)
+    if (!fs::is_directory(dirs[i]))
+      throw InputError(dirs[i].string(), std::string("models folder not found (given as ") +
+                                             (dirs[i] == models_dir ? "--models or detection.models_dir" : "$WARDMAP_MODELS") + ")");
   std::string looked;
-  for (const fs::path& dir : model_search_path(models_dir)) {
+  for (const fs::path& dir : dirs) {
     const fs::path candidate = dir / relative;
     if (fs::is_regular_file(candidate)) return candidate;
     looked += (looked.empty() ? "" : ", ") + candidate.string();

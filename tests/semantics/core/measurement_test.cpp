@@ -153,8 +153,6 @@ TEST(Measurement, CoincidentPosesKeepTheClearlyNearerOne) {
   EXPECT_EQ(run(near_here, 300, 303, {"chair", "table"}), std::make_pair(true, true));
 }
 
-// A pole's box holds few of its pixels; when its depth window lands on the wall far behind, the
-// box's height tells: a 1.8 m pole filling 180 rows stands about 5 m away, not 9.
 // An iv pole in the box of the two pole tests below (180 rows: 1.8 m at 5 m with f = 500), seen by
 // an upright camera at the origin.
 std::optional<ObjectPose> measure_pole(const cv::Mat& depth, const SemanticOptions& o) {
@@ -162,6 +160,8 @@ std::optional<ObjectPose> measure_pole(const cv::Mat& depth, const SemanticOptio
                                  Eigen::Vector3d(0, -1, 0), "iv_pole", o);
 }
 
+// A pole's box holds few of its pixels; when its depth window lands on the wall far behind, the
+// box's height tells: a 1.8 m pole filling 180 rows stands about 5 m away, not 9.
 TEST(Measurement, TallClassFartherThanItsBoxHeightAllowsGetsNoPose) {
   SemanticOptions o;
   const cv::Mat wall = scene(9.0, 9.0, 0, 1, 0, 1);

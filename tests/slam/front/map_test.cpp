@@ -118,7 +118,6 @@ TEST(LocalBundleAdjustment, StopsAtTheIterationWhereAbortIsAsked) {
 TEST(LocalBundleAdjustment, RecoversPerturbedKeyframePoses) {
   Submap map(0);
   std::vector<std::shared_ptr<KeyFrame>> kfs;
-  const SE3 truth(Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero());
   for (int k = 0; k < 4; ++k) {
     Frame f(static_cast<std::uint64_t>(k), k * 0.1, features());
     const Eigen::Vector3d axis = Eigen::Vector3d(1, 2 * (k % 2) - 1, 0.5 * k).normalized();
@@ -131,8 +130,8 @@ TEST(LocalBundleAdjustment, RecoversPerturbedKeyframePoses) {
   const LocalBAResult r = local_bundle_adjustment(kfs.back(), map, camera(), o, nullptr, {});
   EXPECT_EQ(r.outliers, 0);
   EXPECT_LT(r.final_cost, 1e-6 * r.initial_cost);
-  for (const auto& kf : kfs) {
-    const SE3 d = kf->pose_cw() * truth.inverse();
+  for (const auto& kf : kfs) {  // all back at kf0's pose, the identity
+    const SE3& d = kf->pose_cw();
     EXPECT_LT(d.translation().norm(), 1e-4) << "keyframe " << kf->id();
     EXPECT_LT(Eigen::AngleAxisd(d.rotation()).angle() * 180 / M_PI, 0.005) << "keyframe " << kf->id();
   }
