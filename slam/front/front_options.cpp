@@ -41,6 +41,7 @@ void FrontOptions::validate(const std::filesystem::path& file) const {
   check_range(t.chi2_mono, 0.1, 100.0, "tracking.chi2_mono", file);
   check_range(t.chi2_stereo, 0.1, 100.0, "tracking.chi2_stereo", file);
   check_range(t.keyframe_max_frames, 1, 10000, "tracking.keyframe_max_frames", file);
+  check_range(t.keyframe_max_gap_seconds, 0.0, 3600.0, "tracking.keyframe_max_gap_seconds", file);
   check_range(t.keyframe_ref_ratio, 0.0, 1.0, "tracking.keyframe_ref_ratio", file);
   check_range(t.keyframe_close_tracked, 0, 100000, "tracking.keyframe_close_tracked", file);
   check_range(t.keyframe_close_untracked, 0, 100000, "tracking.keyframe_close_untracked", file);
@@ -139,6 +140,7 @@ FrontOptions load_front_options(const io::Settings& settings) {
   read_option(t, ts, "chi2_mono", k.chi2_mono, f);
   read_option(t, ts, "chi2_stereo", k.chi2_stereo, f);
   read_option(t, ts, "keyframe_max_frames", k.keyframe_max_frames, f);
+  read_option(t, ts, "keyframe_max_gap_seconds", k.keyframe_max_gap_seconds, f);
   read_option(t, ts, "keyframe_ref_ratio", k.keyframe_ref_ratio, f);
   read_option(t, ts, "keyframe_close_tracked", k.keyframe_close_tracked, f);
   read_option(t, ts, "keyframe_close_untracked", k.keyframe_close_untracked, f);

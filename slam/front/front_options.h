@@ -52,6 +52,12 @@ struct TrackingOptions {
   double chi2_mono = 5.991;            // tracking.chi2_mono: 95 % of chi2 with 2 dof
   double chi2_stereo = 7.815;          // tracking.chi2_stereo: 95 % of chi2 with 3 dof
   int keyframe_max_frames = 10;        // tracking.keyframe_max_frames: insert at least this often
+  // A keyframe the busy mapper cannot take now waits for the next frame (ORB-SLAM3's monocular rule),
+  // unless the next frame would come more than this long after the last keyframe: then it is queued
+  // now, and the mapper cuts its local BA short for it. At 30 Hz the wait is at most a frame or two
+  // of motion and the BA's time matters more; at KITTI's 10 Hz one frame is 0.1 s (about 1 m of road)
+  // and keyframes every other frame cost more than BAs cut short (docs/EXPERIMENTS.md).
+  double keyframe_max_gap_seconds = 0.15;  // tracking.keyframe_max_gap_seconds
   double keyframe_ref_ratio = 0.75;    // tracking.keyframe_ref_ratio: tracked / reference-keyframe points
   int keyframe_close_tracked = 100;    // tracking.keyframe_close_tracked
   int keyframe_close_untracked = 70;   // tracking.keyframe_close_untracked (ORB-SLAM: 70)

@@ -7,14 +7,15 @@ bool need_new_keyframe(const KeyFrameEvidence& e, const TrackingOptions& o) {
   const double ref_ratio = e.keyframes_in_map < 2 ? 0.4 : o.keyframe_ref_ratio;
   const bool need_close = e.tracked_close < o.keyframe_close_tracked && e.untracked_close > o.keyframe_close_untracked;
   const bool too_long = e.frames_since_keyframe >= o.keyframe_max_frames;
-  const bool idle = e.mapper_idle;
+  const bool accepts = e.mapper_idle ||
+                       (!e.mapper_keyframes_waiting && e.deferred_gap_seconds > o.keyframe_max_gap_seconds);
   const bool weak = e.tracked_inliers < 0.25 * e.reference_points || need_close;
   const bool fewer_than_reference =
       (e.tracked_inliers < ref_ratio * e.reference_points || need_close) && e.tracked_inliers > 15;
   // Unlike ORB-SLAM, a keyframe is also due after keyframe_max_frames whatever the reference holds
   // (its reference count is 0 until points gain observations, which a sparse map may never reach).
   if (too_long && e.tracked_inliers > 15) return true;
-  return (idle || weak) && fewer_than_reference;
+  return (accepts || weak) && fewer_than_reference;
 }
 
 }  // namespace wardmap::slam

@@ -1,6 +1,7 @@
 // When the tracker inserts a keyframe (ORB-SLAM's NeedNewKeyFrame for RGB-D): often enough, when
 // the frame tracks clearly fewer points than its reference keyframe holds, or when too few close
 // points are tracked while many close keypoints are unmatched; and always after keyframe_max_frames.
+// A busy mapper takes one only when tracking is weak or deferring it would leave too long a gap.
 #pragma once
 
 #include "slam/front/front_options.h"
@@ -16,6 +17,10 @@ struct KeyFrameEvidence {
   int untracked_close = 0;  // close keypoints without one
   bool mapper_idle = true;
   bool mapper_queue_full = false;  // then no keyframe: the queue must not grow without bound
+  bool mapper_keyframes_waiting = false;  // keyframes queued, not yet taken by the mapper
+  // Seconds from the last keyframe to the next frame (this frame's period ahead): the gap a keyframe
+  // deferred to the next frame would leave.
+  double deferred_gap_seconds = 0;
 };
 
 bool need_new_keyframe(const KeyFrameEvidence& e, const TrackingOptions& options);

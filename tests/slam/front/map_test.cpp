@@ -190,6 +190,25 @@ TEST(KeyFramePolicy, InsertsWhenTrackingWeakensOrAfterMaxFrames) {
   EXPECT_TRUE(need_new_keyframe(e, o));
 }
 
+TEST(KeyFramePolicy, BusyMapperTakesAKeyframeOnlyWhenDeferringItLeavesTooLongAGap) {
+  TrackingOptions o;  // keyframe_max_gap_seconds 0.15
+  KeyFrameEvidence e;
+  e.keyframes_in_map = 5;
+  e.reference_points = 400;
+  e.tracked_inliers = 250;  // < 0.75 x 400, not weak (> 0.25 x 400)
+  e.frames_since_keyframe = 1;
+  e.mapper_idle = false;
+  e.deferred_gap_seconds = 2.0 / 30;  // 30 Hz: the next frame is 0.067 s after the keyframe
+  EXPECT_FALSE(need_new_keyframe(e, o));
+  e.deferred_gap_seconds = 0.2;  // 10 Hz
+  EXPECT_TRUE(need_new_keyframe(e, o));
+  e.mapper_keyframes_waiting = true;  // one already queued: it waits for the next frame
+  EXPECT_FALSE(need_new_keyframe(e, o));
+  e.mapper_keyframes_waiting = false;
+  o.keyframe_max_gap_seconds = 0.25;
+  EXPECT_FALSE(need_new_keyframe(e, o));
+}
+
 TEST(BoundedQueue, RefusesWhenFullAndDrainsInOrder) {
   BoundedQueue<int> q(2);
   EXPECT_TRUE(q.try_push(1));
