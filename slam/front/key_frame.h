@@ -69,9 +69,13 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   bool not_erase = false;  // set while another module relies on it (e.g. the mapper's current keyframe)
   // Scratch for build_local_map: the stamp of the last local map that took this keyframe.
   std::uint64_t local_map_stamp = 0;
-  // Bag of words (empty without a vocabulary), for relocalisation; set once by the tracker.
+  // Bag of words (empty without a vocabulary), for relocalisation; computed once, by the mapper when
+  // it registers the keyframe, or by the tracker if it needs them first (both hold the submap's lock).
   place::BowVector bow;
   place::FeatureVector feature_vector;  // direct index (features per vocabulary node), for guided matching
+  void compute_words(const place::Vocabulary& vocabulary) {
+    if (bow.empty()) bow = vocabulary.transform(features().descriptors, &feature_vector, 2);
+  }
 
  private:
   struct Connection {

@@ -121,6 +121,7 @@ void LocalMapper::process(const std::shared_ptr<KeyFrame>& kf) {
 }
 
 void LocalMapper::register_keyframe(const std::shared_ptr<KeyFrame>& kf) {
+  if (vocabulary_) kf->compute_words(*vocabulary_);
   for (size_t i = 0; i < kf->size(); ++i) {
     const auto& mp = kf->map_point(i);
     if (!mp || mp->bad()) continue;

@@ -46,6 +46,8 @@ class LocalMapper {
 
   // Call only while idle (inline, or after wait_idle()).
   void set_submap(std::shared_ptr<Submap> submap);
+  // Registering a keyframe then computes its bag of words (off the tracking thread, as ORB-SLAM does).
+  void set_vocabulary(std::shared_ptr<const place::Vocabulary> vocabulary) { vocabulary_ = std::move(vocabulary); }
   // False when the queue is full: the tracker then keeps tracking and tries again later.
   bool enqueue(std::shared_ptr<KeyFrame> keyframe) { return queue_.try_push(std::move(keyframe)); }
   bool idle() const { return queue_.empty() && !busy_; }
@@ -80,6 +82,7 @@ class LocalMapper {
   FrontOptions options_;
   PinholeCamera camera_;
   OrbMatcher matcher_;
+  std::shared_ptr<const place::Vocabulary> vocabulary_;
   std::shared_ptr<Submap> submap_;
   BoundedQueue<std::shared_ptr<KeyFrame>> queue_;
   std::list<std::shared_ptr<MapPoint>> recent_points_;

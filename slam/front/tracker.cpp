@@ -49,6 +49,7 @@ void Tracker::set_submap(std::shared_ptr<Submap> submap, const SE3& initial_pose
   last_keyframe_.reset();
   init_reference_.reset();
   place_database_.clear();
+  unindexed_.clear();
 }
 
 TrackingOutcome Tracker::track(Frame& frame) {
@@ -67,6 +68,7 @@ TrackingOutcome Tracker::track(Frame& frame) {
     return out;
   }
 
+  index_new_keyframes(false);
   bool ok = false;
   if (state_ == TrackingState::kTracking) {
     replace_fused_points(*last_frame_);
@@ -245,8 +247,12 @@ bool Tracker::create_initial_map(Frame& first, Frame& second, const std::vector<
   std::fill(second.outlier.begin(), second.outlier.end(), 0);
   for (size_t i = 0; i < kf2->size(); ++i)
     if (kf2->map_point(i) && !kf2->map_point(i)->bad()) second.map_points[i] = kf2->map_point(i);
-  add_to_place_database(kf1);
-  add_to_place_database(kf2);
+  if (vocabulary_) {  // the mapper registers kf1 before kf2; its triangulation with kf2 needs kf2's words
+    kf1->compute_words(*vocabulary_);
+    kf2->compute_words(*vocabulary_);
+  }
+  unindexed_.push_back(kf1);
+  unindexed_.push_back(kf2);
   reference_ = last_keyframe_ = kf2;
   last_keyframe_frame_ = second.id();
   last_keyframe_time_ = second.timestamp();
@@ -265,7 +271,7 @@ bool Tracker::initialise_rgbd(Frame& frame) {
   auto kf = submap_->create_keyframe(frame);
   auto created = create_depth_points(kf, *submap_, camera_, options_.tracking, /*every_depth=*/true);
   for (const auto& [i, mp] : created) frame.map_points[static_cast<size_t>(i)] = mp;
-  add_to_place_database(kf);
+  unindexed_.push_back(kf);
   reference_ = last_keyframe_ = kf;
   last_keyframe_frame_ = frame.id();
   last_keyframe_time_ = frame.timestamp();
@@ -379,7 +385,7 @@ void Tracker::insert_keyframe(Frame& frame) {
     frame.map_points[static_cast<size_t>(i)] = mp;
     frame.outlier[static_cast<size_t>(i)] = 0;
   }
-  add_to_place_database(kf);
+  unindexed_.push_back(kf);
   reference_ = last_keyframe_ = kf;
   last_keyframe_frame_ = frame.id();
   last_keyframe_time_ = frame.timestamp();
@@ -388,10 +394,15 @@ void Tracker::insert_keyframe(Frame& frame) {
   mapper_.process_queued();          // inline mapping in this milestone
 }
 
-void Tracker::add_to_place_database(const std::shared_ptr<KeyFrame>& kf) {
-  if (!vocabulary_) return;
-  kf->bow = vocabulary_->transform(kf->features().descriptors, &kf->feature_vector, 2);
-  place_database_.add(kf->id(), kf->bow);
+void Tracker::index_new_keyframes(bool compute_missing) {
+  size_t waiting = 0;
+  for (auto& kf : unindexed_) {
+    if (!vocabulary_ || kf->bad()) continue;
+    if (compute_missing) kf->compute_words(*vocabulary_);
+    if (!kf->bow.empty()) place_database_.add(kf->id(), kf->bow);
+    else if (!compute_missing) unindexed_[waiting++] = kf;  // the mapper has not registered it yet
+  }
+  unindexed_.resize(waiting);
 }
 
 bool Tracker::plausible_recovery(const Frame& frame) const {
@@ -405,6 +416,7 @@ bool Tracker::plausible_recovery(const Frame& frame) const {
 
 bool Tracker::relocalise(Frame& frame) {
   const TrackingOptions& t = options_.tracking;
+  index_new_keyframes(true);
   if (place_database_.size() == 0 || frame.size() == 0) return false;
   const place::BowVector bow = vocabulary_->transform(frame.features().descriptors);
   const auto candidates = place_database_.query(bow, static_cast<size_t>(t.reloc_candidates));

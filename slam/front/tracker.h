@@ -47,7 +47,10 @@ class Tracker {
   Tracker(const FrontOptions& options, const PinholeCamera& camera, LocalMapper& mapper);
 
   // Enables relocalisation by place recognition (bags of words of every keyframe from now on).
-  void set_vocabulary(std::shared_ptr<const place::Vocabulary> vocabulary) { vocabulary_ = std::move(vocabulary); }
+  void set_vocabulary(std::shared_ptr<const place::Vocabulary> vocabulary) {
+    mapper_.set_vocabulary(vocabulary);
+    vocabulary_ = std::move(vocabulary);
+  }
   // Starts over on `submap`: the next frame with enough depth initialises it at `initial_pose_cw`.
   void set_submap(std::shared_ptr<Submap> submap, const SE3& initial_pose_cw = SE3());
   TrackingOutcome track(Frame& frame);
@@ -73,7 +76,6 @@ class Tracker {
   // RGB-D: the recovered pose lies within reach of the last tracked one (reloc_max_speed x time +
   // reloc_distance_margin). Monocular maps have no metric scale: always true.
   bool plausible_recovery(const Frame& frame) const;
-  void add_to_place_database(const std::shared_ptr<KeyFrame>& kf);
   int optimise_frame_pose(Frame& frame);  // returns inliers; flags outliers
   void insert_keyframe(Frame& frame);
   KeyFrameEvidence evidence(const Frame& frame, int inliers) const;
@@ -100,6 +102,10 @@ class Tracker {
   std::vector<TrackingOutcome::Backfilled> backfilled_;
   std::shared_ptr<const place::Vocabulary> vocabulary_;
   place::KeyframeDatabase place_database_;
+  std::vector<std::shared_ptr<KeyFrame>> unindexed_;  // keyframes not yet in place_database_
+  // Adds the new keyframes whose words the mapper has computed to the place database; with
+  // compute_missing (relocalisation needs them all) computes the others' too.
+  void index_new_keyframes(bool compute_missing);
   std::vector<TrackingOutcome::Backfilled> backfill_initialisation_window(const std::shared_ptr<KeyFrame>& kf1,
                                                                          const std::shared_ptr<KeyFrame>& kf2);
 };
