@@ -46,7 +46,8 @@ class LocalMapper {
 
   // Call only while idle (inline, or after wait_idle()).
   void set_submap(std::shared_ptr<Submap> submap);
-  // Registering a keyframe then computes its bag of words (off the tracking thread, as ORB-SLAM does).
+  // Registering a keyframe then computes its bag of words (off the tracking thread, as ORB-SLAM does);
+  // call it, too, only while idle.
   void set_vocabulary(std::shared_ptr<const place::Vocabulary> vocabulary) { vocabulary_ = std::move(vocabulary); }
   // False when the queue is full: the tracker then keeps tracking and tries again later.
   bool enqueue(std::shared_ptr<KeyFrame> keyframe) { return queue_.try_push(std::move(keyframe)); }
