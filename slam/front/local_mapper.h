@@ -52,7 +52,6 @@ class LocalMapper {
   // False when the queue is full: the tracker then keeps tracking and tries again later.
   bool enqueue(std::shared_ptr<KeyFrame> keyframe) { return queue_.try_push(std::move(keyframe)); }
   bool idle() const { return queue_.empty() && !busy_; }
-  bool keyframes_waiting() const { return !queue_.empty(); }
   bool queue_full() const { return queue_.size() >= static_cast<size_t>(options_.mapping.queue_capacity); }
   size_t queued() const { return queue_.size(); }
   // Inline mode: maps every queued keyframe. Threaded mode: does nothing (the worker does it).

@@ -371,7 +371,7 @@ KeyFrameEvidence Tracker::evidence(const Frame& frame, int inliers) const {
   e.mapper_idle = mapper_.idle() && (mapper_.threaded() || frame.timestamp() - last_keyframe_time_ >=
                                                                options_.mapping.inline_busy_seconds);
   e.mapper_queue_full = mapper_.queue_full();
-  e.mapper_keyframes_waiting = mapper_.keyframes_waiting();
+  e.mapper_keyframes_waiting = mapper_.queued() > 0;
   const double period = last_frame_ ? frame.timestamp() - last_frame_->timestamp() : 0.0;
   e.deferred_gap_seconds = frame.timestamp() - last_keyframe_time_ + period;
   return e;
