@@ -2,8 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include <random>
-
+#include "tests/support/pose_scene.h"
 #include "tests/support/test_camera.h"
 
 namespace wardmap::slam {
@@ -11,34 +10,10 @@ namespace wardmap::slam {
 namespace {
 PinholeCamera camera() { return test::vga_camera(525); }
 
-// Synthetic observations of points in front of `truth`, every tenth one an outlier (25, -30) px off.
-struct Scene {
-  std::vector<PoseObservation> obs;
-  std::vector<bool> is_outlier;
-};
+using Scene = test::PoseScene;
 
 Scene make_scene(const PinholeCamera& cam, double bf, const SE3& truth, bool stereo) {
-  std::mt19937 rng(42);
-  std::uniform_real_distribution<double> ux(-2, 2), uy(-1.5, 1.5), uz(1.5, 6);
-  std::normal_distribution<double> noise(0, 0.5);
-  Scene scene;
-  auto& obs = scene.obs;
-  auto& is_outlier = scene.is_outlier;
-  while (obs.size() < 300) {
-    const Eigen::Vector3d pc(ux(rng), uy(rng), uz(rng));
-    const Eigen::Vector2d px(cam.fx * pc.x() / pc.z() + cam.cx, cam.fy * pc.y() / pc.z() + cam.cy);
-    if (!cam.in_image(px)) continue;
-    PoseObservation o;
-    o.point = truth.inverse() * pc;
-    const bool outlier = obs.size() % 10 == 0;
-    o.pixel =
-        px + Eigen::Vector2d(noise(rng), noise(rng)) + (outlier ? Eigen::Vector2d(25, -30) : Eigen::Vector2d::Zero());
-    if (stereo) o.right_u = px.x() - bf / pc.z() + noise(rng);
-    o.inv_sigma = 1.0;
-    obs.push_back(o);
-    is_outlier.push_back(outlier);
-  }
-  return scene;
+  return test::make_pose_scene(cam, bf, truth, stereo);
 }
 
 }  // namespace
