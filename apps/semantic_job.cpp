@@ -138,6 +138,7 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
       return reader->read(*i);
     };
     const auto* points = job.keyframe_points;
+    if (points) reader->set_decode_depth(false);  // monocular: measured on map points, never on depth images
     if (points && points->size() != job.keyframes->size())
       throw std::logic_error("run_semantic_job: keyframe_points must be parallel to keyframes");
     double scale = 1;

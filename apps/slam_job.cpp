@@ -73,6 +73,7 @@ double run_slam_job(const SlamJob& job) {
   if (mode == "rgbd" && !info.has_depth)
     throw InputError(job.sequence.string(), "--mode rgbd needs depth images, and this sequence has none");
   options.monocular = mode == "mono";
+  reader->set_decode_depth(!options.monocular);  // the monocular front-process never reads depth
   options.mapping_thread = !job.deterministic;
   if (job.realtime && job.deterministic)
     throw InputError("--realtime", "paces the input for the mapper thread, which --deterministic does not run");

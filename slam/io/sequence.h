@@ -66,6 +66,9 @@ class SequenceReader {
   const std::optional<SE3>& gt_pose(size_t i) const { return entries_.at(i).gt_pose; }
   // Decodes frame i; throws InputError naming the image file when it is missing or unreadable.
   virtual Frame read(size_t i);
+  // Whether read() decodes the depth images (default true). A monocular run does not use them, and
+  // decoding a 16-bit PNG costs about as much as the colour image; Frame::depth is then empty.
+  void set_decode_depth(bool decode) { decode_depth_ = decode; }
   // The ground-truth trajectory as the dataset gives it (may be denser than the frames).
   const Trajectory& ground_truth() const { return ground_truth_; }
   // Calibration found beside the dataset (a settings.yaml in its folder); the image size must match.
@@ -87,6 +90,7 @@ class SequenceReader {
 
   SequenceInfo info_;
   std::vector<Entry> entries_;
+  bool decode_depth_ = true;
   Trajectory ground_truth_;
 };
 

@@ -32,6 +32,19 @@ TEST(TumReader, AssociatesDepthWithinWindowAndAttachesGroundTruth) {
   EXPECT_EQ(r->ground_truth().size(), 4u);
 }
 
+TEST(TumReader, SkipsDepthWhenNotDecoding) {
+  const fs::path root = scratch_dir();
+  test::make_tum(root);
+  auto r = open_sequence(root);
+  r->set_decode_depth(false);  // a monocular run
+  const Frame f = r->read(2);
+  EXPECT_TRUE(f.depth.empty());
+  EXPECT_EQ(f.image.at<cv::Vec3b>(0, 0)[0], 13);
+  EXPECT_TRUE(r->info().has_depth);  // the sequence still has it
+  r->set_decode_depth(true);
+  EXPECT_FLOAT_EQ(r->read(2).depth.at<float>(5, 5), 4.0f);
+}
+
 TEST(KittiReader, ReadsTimesCalibrationAndPoses) {
   const fs::path root = scratch_dir();
   test::make_kitti(root);
