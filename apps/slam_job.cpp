@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/detection_cache.h"
+#include "apps/frame_prefetcher.h"
 #include "apps/progress.h"
 #include "slam/core/errors.h"
 #include "slam/eval/trajectory_eval.h"
@@ -111,9 +112,12 @@ double run_slam_job(const SlamJob& job) {
   }
   Progress progress("slam", reader->size(), job.progress);
   std::optional<std::pair<std::chrono::steady_clock::time_point, double>> clock_start;  // --realtime
+  // --deterministic tracks and maps on this thread: the next frames are decoded on the idle core. A
+  // threaded run's tracker and mapper keep both cores busy, and it reads here.
+  FramePrefetcher frames(*reader, job.deterministic ? 2 : 0);
   for (size_t i = 0; i < reader->size(); ++i) {
     progress.update(i + 1);
-    const slam::io::Frame frame = reader->read(i);
+    const slam::io::Frame frame = frames.next();
     if (job.realtime) {  // the frame is delivered at its own time, measured from the first one's
       if (!clock_start) clock_start.emplace(std::chrono::steady_clock::now(), frame.timestamp);
       std::this_thread::sleep_until(clock_start->first +

@@ -1,0 +1,48 @@
+#include "apps/frame_prefetcher.h"
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace wardmap::apps {
+
+FramePrefetcher::FramePrefetcher(slam::io::SequenceReader& reader, size_t ahead)
+    : reader_(reader), threaded_(ahead > 0), queue_(threaded_ ? ahead : 1) {
+  if (threaded_) thread_ = std::thread([this] { run(); });
+}
+
+FramePrefetcher::~FramePrefetcher() {
+  if (!threaded_) return;
+  queue_.close();  // a push waiting for room returns false, and the thread ends
+  thread_.join();
+}
+
+void FramePrefetcher::run() {
+  for (size_t i = 0; i < reader_.size(); ++i) {
+    Item item;
+    try {
+      item.frame = reader_.read(i);
+    } catch (...) {
+      item.error = std::current_exception();
+    }
+    const bool failed = item.error != nullptr;
+    if (!queue_.push(std::move(item)) || failed) return;  // closed, or nothing after an error
+  }
+}
+
+slam::io::Frame FramePrefetcher::next() {
+  if (taken_ >= reader_.size())
+    throw std::out_of_range("FramePrefetcher::next: all " + std::to_string(reader_.size()) + " frames were taken");
+  if (!threaded_) {
+    slam::io::Frame f = reader_.read(taken_);
+    ++taken_;
+    return f;
+  }
+  std::optional<Item> item = queue_.pop();
+  if (!item) throw std::logic_error("FramePrefetcher::next: the reading thread stopped early");
+  if (item->error) std::rethrow_exception(item->error);
+  ++taken_;
+  return std::move(*item->frame);
+}
+
+}  // namespace wardmap::apps
