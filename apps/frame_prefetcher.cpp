@@ -26,8 +26,9 @@ void FramePrefetcher::run() {
       item.error = std::current_exception();
     }
     const bool failed = item.error != nullptr;
-    if (!queue_.push(std::move(item)) || failed) return;  // closed, or nothing after an error
+    if (!queue_.push(std::move(item)) || failed) break;  // closed, or nothing after an error
   }
+  queue_.close();  // what is queued can still be taken
 }
 
 slam::io::Frame FramePrefetcher::next() {
@@ -38,9 +39,10 @@ slam::io::Frame FramePrefetcher::next() {
     ++taken_;
     return f;
   }
+  if (error_) std::rethrow_exception(error_);  // the frame that failed fails again, as a direct read
   std::optional<Item> item = queue_.pop();
   if (!item) throw std::logic_error("FramePrefetcher::next: the reading thread stopped early");
-  if (item->error) std::rethrow_exception(item->error);
+  if (item->error) std::rethrow_exception(error_ = item->error);
   ++taken_;
   return std::move(*item->frame);
 }

@@ -39,6 +39,7 @@ class FramePrefetcher {
   bool threaded_;
   slam::BoundedQueue<Item> queue_;
   size_t taken_ = 0;
+  std::exception_ptr error_;  // a read that failed: thrown again by every later next()
   std::thread thread_;
 };
 

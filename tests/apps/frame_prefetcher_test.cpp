@@ -49,6 +49,7 @@ TEST_P(FramePrefetcherAhead, ThrowsTheReadErrorAtItsFrame) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("000001.png"), std::string::npos) << e.what();
   }
+  EXPECT_THROW(frames.next(), InputError);  // again, rather than a later frame or a hang
 }
 
 INSTANTIATE_TEST_SUITE_P(InlineAndThreaded, FramePrefetcherAhead, ::testing::Values(0, 1, 2));
