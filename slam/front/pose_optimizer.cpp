@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <limits>
-#include <tuple>
 
 #include <Eigen/Cholesky>
 
@@ -35,6 +33,33 @@ struct ActiveObservation {
   double huber_b;
 };
 
+// Whitened residual of one observation whose point lies at `pc` in the camera (pc.z() > 0): 2 rows,
+// or 3 with the virtual right coordinate. With `J`, its Jacobian for a left perturbation
+// T <- exp(delta) T: d(pixel)/d(pc) times d(pc)/d(delta) = [I | -[pc]x] (exact at delta = 0).
+int whitened_residual(const Eigen::Vector3d& pc, const PoseObservation& o, const PinholeIntrinsics& k,
+                      Eigen::Vector3d* r, Eigen::Matrix<double, 3, 6>* J) {
+  const double iz = 1.0 / pc.z(), s = o.inv_sigma;
+  const double u = k.fx * pc.x() * iz + k.cx, v = k.fy * pc.y() * iz + k.cy;
+  const bool stereo = o.right_u >= 0;
+  *r = Eigen::Vector3d(s * (u - o.pixel.x()), s * (v - o.pixel.y()), 0.0);
+  if (stereo) (*r)[2] = s * (u - k.bf * iz - o.right_u);
+  if (J) {
+    Eigen::Matrix<double, 3, 3> Jp;
+    Jp.row(0) << k.fx * iz, 0, -k.fx * pc.x() * iz * iz;
+    Jp.row(1) << 0, k.fy * iz, -k.fy * pc.y() * iz * iz;
+    Eigen::Matrix<double, 3, 6> Jd;
+    Jd.leftCols<3>().setIdentity();
+    Jd.rightCols<3>() << 0, pc.z(), -pc.y(), -pc.z(), 0, pc.x(), pc.y(), -pc.x(), 0;
+    if (stereo) {
+      Jp.row(2) << k.fx * iz, 0, (-k.fx * pc.x() + k.bf) * iz * iz;
+      J->noalias() = s * Jp * Jd;
+    } else {
+      J->topRows<2>().noalias() = s * Jp.topRows<2>() * Jd;
+    }
+  }
+  return stereo ? 3 : 2;
+}
+
 // Cost 0.5 sum rho(|r|^2) at T, and with `H`/`g` the Gauss-Newton normal equations of the
 // (reweighted) whitened residuals for a left perturbation T <- exp(delta) T. False when a point lies
 // behind the camera (the step leading there is rejected, as Ceres does with a failed evaluation).
@@ -45,35 +70,22 @@ bool evaluate(const SE3& T, const std::vector<ActiveObservation>& active, const 
     H->setZero();
     g->setZero();
   }
+  Eigen::Vector3d r;
+  Eigen::Matrix<double, 3, 6> J;
   for (const ActiveObservation& a : active) {
-    const PoseObservation& o = *a.o;
-    const Eigen::Vector3d pc = T * o.point;
+    const Eigen::Vector3d pc = T * a.o->point;
     if (pc.z() <= 1e-9) return false;
-    const double iz = 1.0 / pc.z(), s = o.inv_sigma;
-    const double u = k.fx * pc.x() * iz + k.cx, v = k.fy * pc.y() * iz + k.cy;
-    const bool stereo = o.right_u >= 0;
-    Eigen::Vector3d r(s * (u - o.pixel.x()), s * (v - o.pixel.y()), 0.0);
-    if (stereo) r[2] = s * (u - k.bf * iz - o.right_u);
+    const int n = whitened_residual(pc, *a.o, k, &r, H ? &J : nullptr);
     const double e2 = r.squaredNorm();
     double w = 1.0;
     c += a.huber_b > 0 ? huber(e2, a.huber_b, &w) : e2;
     if (!H) continue;
-    // d(pixel)/d(pc), then d(pc)/d(delta) = [I | -[pc]x] (exact: linearised at delta = 0).
-    Eigen::Matrix<double, 3, 3> Jp;
-    Jp.row(0) << k.fx * iz, 0, -k.fx * pc.x() * iz * iz;
-    Jp.row(1) << 0, k.fy * iz, -k.fy * pc.y() * iz * iz;
-    Jp.row(2) << k.fx * iz, 0, (-k.fx * pc.x() + k.bf) * iz * iz;
-    Eigen::Matrix<double, 3, 6> Jd;
-    Jd.leftCols<3>().setIdentity();
-    Jd.rightCols<3>() << 0, pc.z(), -pc.y(), -pc.z(), 0, pc.x(), pc.y(), -pc.x(), 0;
-    if (stereo) {
-      const Eigen::Matrix<double, 3, 6> J = s * Jp * Jd;
+    if (n == 3) {
       H->noalias() += w * J.transpose() * J;
       g->noalias() += w * J.transpose() * r;
     } else {
-      const Eigen::Matrix<double, 2, 6> J = s * Jp.topRows<2>() * Jd;
-      H->noalias() += w * J.transpose() * J;
-      g->noalias() += w * J.transpose() * r.head<2>();
+      H->noalias() += w * J.topRows<2>().transpose() * J.topRows<2>();
+      g->noalias() += w * J.topRows<2>().transpose() * r.head<2>();
     }
   }
   *cost = 0.5 * c;
@@ -123,38 +135,92 @@ bool solve_levenberg_marquardt(SE3& T, const std::vector<ActiveObservation>& act
   return true;
 }
 
-// The same round with Ceres (analytic PosePerturbationCost around the round's starting pose). The
-// problem does not own its cost and loss functions: they live in this frame's containers (one Huber
-// loss per threshold), which saves two heap objects per observation and round.
+// The observations of one round as a single Ceres residual block over delta, the left perturbation of
+// the round's starting pose T0 (2 or 3 residuals per observation). One block instead of one per
+// observation spares Ceres its per-block bookkeeping, which dominated the solve of a few hundred
+// 2-row blocks (BM_PoseOptimize). The Huber loss of each observation is applied here as Ceres
+// applies a loss to a block: the residual and its Jacobian scaled by sqrt(rho'(s)) (Ceres's
+// Corrector, since Huber's rho'' <= 0), while the cost must be 0.5 sum rho(s), which
+// SummedRobustCost reports. The minimiser then takes the steps of the per-observation problem.
+class PoseRoundCost : public ceres::CostFunction {
+ public:
+  PoseRoundCost(const PinholeIntrinsics& k, const SE3& T0, const std::vector<ActiveObservation>& active)
+      : k_(k), active_(active) {
+    p0_.reserve(active.size());
+    int residuals = 0;
+    for (const ActiveObservation& a : active) {
+      p0_.push_back(T0 * a.o->point);
+      residuals += a.o->right_u >= 0 ? 3 : 2;
+    }
+    set_num_residuals(residuals);
+    mutable_parameter_block_sizes()->push_back(6);
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    Vector6d delta;
+    for (int i = 0; i < 6; ++i) delta[i] = parameters[0][i];
+    const SE3 T = SE3::exp(delta);
+    double* J_out = jacobians ? jacobians[0] : nullptr;  // row-major, num_residuals x 6
+    Eigen::Vector3d r;
+    Eigen::Matrix<double, 3, 6> J;
+    double rho_sum = 0;
+    for (size_t i = 0; i < active_.size(); ++i) {
+      const Eigen::Vector3d pc = T * p0_[i];
+      if (pc.z() <= 1e-9) return false;
+      const int n = whitened_residual(pc, *active_[i].o, k_, &r, J_out ? &J : nullptr);
+      const double e2 = r.squaredNorm();
+      double w = 1.0;
+      rho_sum += active_[i].huber_b > 0 ? huber(e2, active_[i].huber_b, &w) : e2;
+      const double scale = w == 1.0 ? 1.0 : std::sqrt(w);
+      for (int j = 0; j < n; ++j) residuals[j] = scale * r[j];
+      residuals += n;
+      if (J_out) {
+        Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor>>(J_out, n, 6) = scale * J.topRows(n);
+        J_out += 6 * n;
+      }
+    }
+    rho_sum_ = rho_sum;
+    return true;
+  }
+
+  // sum rho(s) over the observations at the last evaluation.
+  double rho_sum() const { return rho_sum_; }
+
+ private:
+  PinholeIntrinsics k_;
+  const std::vector<ActiveObservation>& active_;
+  std::vector<Eigen::Vector3d> p0_;  // the points in the camera at T0
+  mutable double rho_sum_ = 0;
+};
+
+// The "loss" of a PoseRoundCost block whose observations carry their own Huber loss: Ceres takes
+// the cost 0.5 rho[0] from it, here the sum of the observations' rho computed by the evaluation
+// just before (Ceres evaluates a block's cost function, then its loss), and leaves the already
+// corrected residuals and Jacobians as they are (rho' = 1, rho'' = 0).
+class SummedRobustCost : public ceres::LossFunction {
+ public:
+  explicit SummedRobustCost(const PoseRoundCost& cost) : cost_(cost) {}
+  void Evaluate(double /*s*/, double rho[3]) const override {
+    rho[0] = cost_.rho_sum();
+    rho[1] = 1.0;
+    rho[2] = 0.0;
+  }
+
+ private:
+  const PoseRoundCost& cost_;
+};
+
+// One round with Ceres (dense normal equations of the 6 parameters, trust region as Ceres's default).
 void solve_ceres(SE3& T, const std::vector<ActiveObservation>& active, const PinholeIntrinsics& k, int iterations) {
   double delta[6] = {0, 0, 0, 0, 0, 0};
-  PerturbationCache cache;
-  // Declared before the problem, so they outlive it.
-  std::deque<PosePerturbationCost<2>> mono;
-  std::deque<PosePerturbationCost<3>> stereo;
-  std::deque<std::pair<double, ceres::HuberLoss>> losses;  // (chi2 threshold, loss)
+  PoseRoundCost cost(k, T, active);  // declared before the problem, so they outlive it
+  SummedRobustCost loss(cost);
+  const bool robust = std::any_of(active.begin(), active.end(), [](const ActiveObservation& a) { return a.huber_b > 0; });
   ceres::Problem::Options po;
   po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  po.disable_all_safety_checks = true;  // the blocks are ours and valid; saves time building
   ceres::Problem problem(po);
-  problem.AddParameterBlock(delta, 6);
-  for (const ActiveObservation& a : active) {
-    ceres::CostFunction* cost = nullptr;
-    if (a.o->right_u >= 0) cost = &stereo.emplace_back(k, T, *a.o, &cache);
-    else cost = &mono.emplace_back(k, T, *a.o, &cache);
-    ceres::LossFunction* loss = nullptr;
-    if (a.huber_b > 0) {
-      auto it = std::find_if(losses.begin(), losses.end(), [&](const auto& l) { return l.first == a.huber_b; });
-      if (it == losses.end()) {
-        losses.emplace_back(std::piecewise_construct, std::forward_as_tuple(a.huber_b),
-                            std::forward_as_tuple(std::sqrt(a.huber_b)));
-        it = std::prev(losses.end());
-      }
-      loss = &it->second;
-    }
-    problem.AddResidualBlock(cost, loss, delta);
-  }
+  problem.AddResidualBlock(&cost, robust ? &loss : nullptr, delta);
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
   so.max_num_iterations = iterations;

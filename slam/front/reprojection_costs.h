@@ -7,9 +7,6 @@
 
 #include <ceres/ceres.h>
 
-#include <algorithm>
-#include <limits>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -156,42 +153,19 @@ class BundleReprojectionCost : public ceres::SizedCostFunction<kResiduals, 7, 3>
 
 // Reprojection residual of a fixed point under T = exp(delta) * T0, delta = (rho, phi) a left
 // perturbation, with the analytic Jacobian d(pc)/d(delta) = [I | -[pc]x] evaluated at the current
-// point (exact at delta = 0; each round restarts from delta = 0). About ten times cheaper than
-// automatic differentiation of the quaternion form, which per-frame tracking paid for.
-// exp(delta) for the delta being evaluated, computed once for all the residual blocks of one pose
-// problem (Ceres evaluates them one after another when solving on one thread).
-struct PerturbationCache {
-  double key[6] = {std::numeric_limits<double>::quiet_NaN(), 0, 0, 0, 0, 0};
-  SE3 T;
-  const SE3& at(const double* delta) {
-    if (!std::equal(delta, delta + 6, key)) {
-      std::copy(delta, delta + 6, key);
-      Vector6d d;
-      for (int i = 0; i < 6; ++i) d[i] = delta[i];
-      T = SE3::exp(d);
-    }
-    return T;
-  }
-};
-
+// point (exact at delta = 0; each round restarts from delta = 0). One residual block per
+// observation: the textbook form of pose-only optimisation, which the tracker's solver
+// (optimize_pose, all of a round's observations in one block) is tested against.
 template <int kResiduals>
 class PosePerturbationCost : public ceres::SizedCostFunction<kResiduals, 6> {
  public:
-  // `cache` (optional, shared by the problem's blocks, single-threaded solve) avoids one exponential
-  // per block and evaluation.
-  PosePerturbationCost(const PinholeIntrinsics& k, const SE3& T0, const PoseObservation& o,
-                       PerturbationCache* cache = nullptr)
-      : k_(k), p0_(T0 * o.point), o_(o), cache_(cache) {}
+  PosePerturbationCost(const PinholeIntrinsics& k, const SE3& T0, const PoseObservation& o)
+      : k_(k), p0_(T0 * o.point), o_(o) {}
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    Eigen::Vector3d pc;
-    if (cache_) {
-      pc = cache_->at(parameters[0]) * p0_;
-    } else {
-      Vector6d delta;
-      for (int i = 0; i < 6; ++i) delta[i] = parameters[0][i];
-      pc = SE3::exp(delta) * p0_;
-    }
+    Vector6d delta;
+    for (int i = 0; i < 6; ++i) delta[i] = parameters[0][i];
+    const Eigen::Vector3d pc = SE3::exp(delta) * p0_;
     if (pc.z() <= 1e-9) return false;
     const double iz = 1.0 / pc.z(), s = o_.inv_sigma;
     const double u = k_.fx * pc.x() * iz + k_.cx, v = k_.fy * pc.y() * iz + k_.cy;
@@ -216,7 +190,6 @@ class PosePerturbationCost : public ceres::SizedCostFunction<kResiduals, 6> {
   PinholeIntrinsics k_;
   Eigen::Vector3d p0_;  // the point in the camera at T0
   PoseObservation o_;
-  PerturbationCache* cache_;
 };
 
 }  // namespace wardmap::slam

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "slam/front/reprojection_costs.h"
 #include "tests/support/pose_scene.h"
 #include "tests/support/test_camera.h"
 
@@ -67,6 +68,51 @@ TEST(PoseOptimizer, LevenbergMarquardtAgreesWithCeres) {
     EXPECT_LT(d.translation().norm(), 1e-5) << stereo;
     EXPECT_LT(rotation_angle(d.rotation()), 1e-6) << stereo;
     EXPECT_EQ(a.inlier, b.inlier) << stereo;
+  }
+}
+
+// optimize_pose's Ceres round puts all observations into one residual block, each with its own Huber
+// loss; it must take the steps of the textbook problem, one block and one ceres::HuberLoss per
+// observation (this test's reference), from a start far enough for the loss to matter.
+TEST(PoseOptimizer, CeresRoundEqualsOneBlockPerObservation) {
+  for (const bool stereo : {false, true}) {
+    for (const bool robust : {true, false}) {
+      const PinholeCamera cam = camera();
+      const double bf = 0.08 * cam.fx;
+      const SE3 truth = SE3::exp((Vector6d() << 0.15, -0.1, 0.05, 0.03, 0.02, -0.04).finished());
+      const Scene scene = make_scene(cam, bf, truth, stereo);
+      const SE3 initial = truth * SE3::exp((Vector6d() << 0.07, -0.06, 0.09, -0.03, 0.02, 0.025).finished());
+      PoseOptimizerOptions options;
+      options.solver = PoseSolver::kCeres;
+      options.rounds = 1;
+      options.robust_rounds = robust ? 1 : 0;
+      const PoseEstimate est = optimize_pose(initial, scene.obs, cam, bf, options);
+
+      const PinholeIntrinsics K{cam.fx, cam.fy, cam.cx, cam.cy, bf};
+      double delta[6] = {0, 0, 0, 0, 0, 0};
+      ceres::Problem problem;
+      for (const PoseObservation& o : scene.obs) {
+        const bool s = o.right_u >= 0;
+        ceres::CostFunction* cost = s ? static_cast<ceres::CostFunction*>(new PosePerturbationCost<3>(K, initial, o))
+                                      : new PosePerturbationCost<2>(K, initial, o);
+        ceres::LossFunction* loss =
+            robust ? new ceres::HuberLoss(std::sqrt(s ? options.chi2_stereo : options.chi2_mono)) : nullptr;
+        problem.AddResidualBlock(cost, loss, delta);
+      }
+      ceres::Solver::Options so;
+      so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+      so.max_num_iterations = options.iterations;
+      so.logging_type = ceres::SILENT;
+      ceres::Solver::Summary summary;
+      ceres::Solve(so, &problem, &summary);
+      const SE3 reference = SE3::exp(Eigen::Map<const Vector6d>(delta)) * initial;
+
+      const SE3 d = est.T_cw * reference.inverse();
+      EXPECT_LT(d.translation().norm(), 1e-12) << stereo << robust;
+      EXPECT_LT(rotation_angle(d.rotation()), 1e-12) << stereo << robust;
+      // The reference moved: the comparison is not between two untouched starts.
+      EXPECT_GT((reference * initial.inverse()).translation().norm(), 0.01);
+    }
   }
 }
 

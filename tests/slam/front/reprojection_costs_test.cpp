@@ -147,36 +147,6 @@ TEST(PosePerturbationCost, JacobianMatchesFiniteDifferences) {
 
 namespace wardmap::slam {
 
-// The shared exp(delta) cache changes nothing in what a block evaluates, whatever the order.
-TEST(PosePerturbationCost, CachedEvaluationEqualsUncached) {
-  const PinholeIntrinsics K{525, 520, 319.5, 239.5, 40.0};
-  const SE3 T0(Eigen::Quaterniond(Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitY())), Eigen::Vector3d(0.1, 0, -0.2));
-  PerturbationCache cache;
-  const PoseObservation a{{0.4, -0.3, 3.0}, {300, 250}, 290, 0.8}, b{{-1.0, 0.2, 5.0}, {150, 260}, -1, 1.0};
-  const PosePerturbationCost<3> a_plain(K, T0, a), a_cached(K, T0, a, &cache);
-  const PosePerturbationCost<2> b_plain(K, T0, b), b_cached(K, T0, b, &cache);
-  for (double step : {0.0, 0.01, 0.01, -0.02}) {
-    const double delta[6] = {step, 0.5 * step, -step, 0.2 * step, -0.1 * step, step};
-    const double* params[] = {delta};
-    for (auto [plain, cached] : {std::pair<const ceres::CostFunction*, const ceres::CostFunction*>{&a_plain, &a_cached},
-                                 {&b_plain, &b_cached}}) {
-      const int m = plain->num_residuals();
-      std::vector<double> r1(static_cast<size_t>(m)), r2(static_cast<size_t>(m)), J1(static_cast<size_t>(6 * m)),
-          J2(static_cast<size_t>(6 * m));
-      double* j1[] = {J1.data()};
-      double* j2[] = {J2.data()};
-      ASSERT_TRUE(plain->Evaluate(params, r1.data(), j1));
-      ASSERT_TRUE(cached->Evaluate(params, r2.data(), j2));
-      EXPECT_EQ(r1, r2);
-      EXPECT_EQ(J1, J2);
-    }
-  }
-}
-
-}  // namespace wardmap::slam
-
-namespace wardmap::slam {
-
 // The hand-written bundle-adjustment Jacobians equal the automatic ones of ReprojectionCost (same
 // ambient coordinates), mono and stereo, at unit and non-unit quaternions; a wrong derivative term
 // is off by far more than the tolerance.
