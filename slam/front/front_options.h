@@ -46,8 +46,8 @@ struct TrackingOptions {
   int pose_rounds = 4;                 // tracking.pose_rounds: optimise / reject outliers rounds
   int pose_iterations = 10;            // tracking.pose_iterations: solver iterations per round
   // tracking.pose_solver: "ceres" (the pose-only optimisation with Ceres) or "lm" (the same
-  // rounds solved by the 6-parameter Levenberg-Marquardt of pose_optimizer.h: about 4x faster per
-  // solve, 3.1 -> 0.75 ms per 7-Scenes frame, same accuracy within 1-2 %).
+  // rounds solved by the 6-parameter Levenberg-Marquardt of pose_optimizer.h: 1.3-1.5x faster per
+  // solve since Ceres gets each round as one residual block, same accuracy within 1-2 %).
   std::string pose_solver = "ceres";
   double chi2_mono = 5.991;            // tracking.chi2_mono: 95 % of chi2 with 2 dof
   double chi2_stereo = 7.815;          // tracking.chi2_stereo: 95 % of chi2 with 3 dof
