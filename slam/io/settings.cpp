@@ -1,8 +1,11 @@
 #include "slam/io/settings.h"
 
+#include <algorithm>
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "slam/core/errors.h"
 
@@ -63,6 +66,51 @@ void reject_repeated_keys(const YAML::Node& node, const std::string& path, const
   }
 }
 
+// The sections wardmap reads beside ORB-SLAM3's keys.
+const char* const kSections[] = {"tracking", "mapping", "semantics", "detection"};
+
+// A top-level key written in the dotted form the documentation uses ("tracking.pose_solver: lm",
+// "semantics.groups.size: 6") is moved into its section, as if it had been nested there. Setting
+// the same key both ways is an error.
+void nest_dotted_keys(YAML::Node& root, const fs::path& file) {
+  std::vector<std::pair<std::string, YAML::Node>> dotted;
+  for (const auto& kv : root) {
+    if (!kv.first.IsScalar()) continue;
+    const std::string key = kv.first.Scalar();
+    for (const char* section : kSections)
+      if (key.rfind(std::string(section) + ".", 0) == 0) dotted.emplace_back(key, kv.second);
+  }
+  for (auto& [key, value] : dotted) {
+    const int line = root[key].Mark().line + 1;
+    std::vector<std::string> parts;
+    for (size_t start = 0;;) {
+      const size_t dot = key.find('.', start);
+      parts.push_back(key.substr(start, dot == std::string::npos ? std::string::npos : dot - start));
+      if (dot == std::string::npos) break;
+      start = dot + 1;
+    }
+    YAML::Node node = root;
+    std::string path;
+    for (size_t i = 0; i + 1 < parts.size(); ++i) {
+      path = path.empty() ? parts[i] : path + "." + parts[i];
+      if (parts[i].empty()) throw InputError(file.string(), "key '" + key + "': empty part in a dotted key", line);
+      YAML::Node child = node[parts[i]];
+      if (!child) {
+        node[parts[i]] = YAML::Node(YAML::NodeType::Map);
+        child = node[parts[i]];
+      }
+      if (!child.IsMap())
+        throw InputError(file.string(), "key '" + key + "': '" + path + "' is not a section", line);
+      node.reset(child);
+    }
+    if (parts.back().empty() || node[parts.back()])
+      throw InputError(file.string(),
+                       "key '" + key + "' is set twice: once dotted, once inside its section; keep one", line);
+    node[parts.back()] = value;
+    root.remove(key);
+  }
+}
+
 }  // namespace
 
 Settings parse_settings(const std::string& text, const fs::path& file) {
@@ -75,6 +123,7 @@ Settings parse_settings(const std::string& text, const fs::path& file) {
   }
   if (!s.root.IsMap()) throw InputError(file.string(), "expected a YAML mapping of settings");
   reject_repeated_keys(s.root, "", file);
+  nest_dotted_keys(s.root, file);
   const YAML::Node& r = s.root;
   CameraSettings& c = s.camera;
   read_key(r, "Camera.type", c.type, file, "a string");
@@ -162,6 +211,50 @@ std::string suggest_settings_name(const std::string& kind, const fs::path& root,
     if (name.find("freiburg3") != std::string::npos || name.find("fr3") != std::string::npos) return "TUM3.yaml";
   }
   return {};
+}
+
+SectionKeys::SectionKeys(YAML::Node section, std::string name, fs::path file)
+    : section_(std::move(section)), name_(std::move(name)), file_(std::move(file)) {}
+
+namespace {
+// Edit distance, for the suggestion in an unknown key's message.
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+}  // namespace
+
+void SectionKeys::reject_unknown() const {
+  if (!section_) return;
+  if (!section_.IsMap())
+    throw InputError(file_.string(), "key '" + name_ + "': expected a section (a mapping of keys)",
+                     section_.Mark().line + 1);
+  for (const auto& kv : section_) {
+    const std::string key = kv.first.Scalar();
+    if (std::find(known_.begin(), known_.end(), key) != known_.end()) continue;
+    std::string best;
+    size_t best_distance = std::max<size_t>(3, key.size() / 3) + 1;
+    for (const std::string& k : known_) {
+      const size_t d = edit_distance(key, k);
+      if (d < best_distance) {
+        best_distance = d;
+        best = k;
+      }
+    }
+    std::string message = "key '" + full(name_, key) + "': not a key of section '" + name_ + "'";
+    if (!best.empty()) message += " (did you mean '" + full(name_, best) + "'?)";
+    throw InputError(file_.string(), message, kv.first.Mark().line + 1);
+  }
 }
 
 }  // namespace wardmap::slam::io

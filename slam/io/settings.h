@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "slam/core/camera.h"
 
@@ -45,6 +46,33 @@ void read_option(const YAML::Node& section, const std::string& section_name, con
                  const std::filesystem::path& file);
 void read_option(const YAML::Node& section, const std::string& section_name, const std::string& key, std::string& value,
                  const std::filesystem::path& file);
+// The options one loader reads from one wardmap section (or subsection, e.g. "semantics.groups"),
+// remembering the keys it knows, so that a key it does not know (misspelt, or from another
+// section) is an error rather than silently ignored.
+class SectionKeys {
+ public:
+  SectionKeys(YAML::Node section, std::string name, std::filesystem::path file);
+  // read_option on this section; the key becomes known.
+  template <class T>
+  void read(const std::string& key, T& value) {
+    known_.push_back(key);
+    read_option(section_, name_, key, value, file_);
+  }
+  // A key read some other way (a list, a subsection).
+  void know(const std::string& key) { known_.push_back(key); }
+  const YAML::Node& node() const { return section_; }
+  // Throws InputError "key 'tracking.pose_solvr': not a key of section 'tracking' (did you mean
+  // 'tracking.pose_solver'?)" for the first key of the section that is not known, with its line.
+  // Also rejects a section that is not a mapping.
+  void reject_unknown() const;
+
+ private:
+  YAML::Node section_;
+  std::string name_;
+  std::filesystem::path file_;
+  std::vector<std::string> known_;
+};
+
 // Throws InputError "key 'section.key': must be in [lo, hi], got v".
 void check_range(double value, double lo, double hi, const std::string& full_key, const std::filesystem::path& file);
 

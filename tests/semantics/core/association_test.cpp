@@ -718,4 +718,16 @@ TEST(Association, MergeContainedKeyLoadsAndABadValueIsNamed) {
 }
 
 }  // namespace
+
+// A misspelt key, or one in the wrong subsection, is an error naming it.
+TEST(SemanticOptions, UnknownKeysAreErrors) {
+  test::expect_load_error_names("groups: {sise: 4}", "semantics.groups.sise");
+  test::expect_load_error_names("groups: {sise: 4}", "did you mean 'semantics.groups.size'");
+  test::expect_load_error_names("association: {min_points: 3}", "semantics.association.min_points");
+  test::expect_load_error_names("asociation: {chains: 2}", "semantics.asociation");
+  test::expect_load_error_names("monocular: {scale_class: [door]}", "semantics.monocular.scale_class");
+  EXPECT_EQ(load_semantic_options(YAML::Load("monocular: {scale_classes: [door]}"), "s.yaml").monocular.scale_classes.size(),
+            1u);
+}
+
 }  // namespace wardmap::semantics

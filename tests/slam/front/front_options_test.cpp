@@ -77,4 +77,46 @@ TEST(FrontOptions, InvalidValuesNameTheKey) {
   expect_error("mapping:\n  ba_max_keyframes_mono: 0\n", "mapping.ba_max_keyframes_mono");
 }
 
+// A misspelt or misplaced key is an error naming it (and the key it probably meant), not a
+// silently ignored setting.
+TEST(FrontOptions, UnknownKeysInTheSectionsAreErrors) {
+  const auto error_of = [](const std::string& extra) -> std::string {
+    try {
+      load_front_options(io::parse_settings(std::string(kBase) + extra, "bad.yaml"));
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const std::string typo = error_of("tracking:\n  pose_solvr: lm\n");
+  EXPECT_NE(typo.find("'tracking.pose_solvr'"), std::string::npos) << typo;
+  EXPECT_NE(typo.find("did you mean 'tracking.pose_solver'"), std::string::npos) << typo;
+  EXPECT_NE(typo.find("bad.yaml"), std::string::npos) << typo;
+  // A mapping key in the tracking section.
+  const std::string misplaced = error_of("tracking:\n  redundant_ratio: 0.8\n");
+  EXPECT_NE(misplaced.find("'tracking.redundant_ratio'"), std::string::npos) << misplaced;
+  EXPECT_NE(error_of("mapping:\n  nonsense: 1\n").find("'mapping.nonsense'"), std::string::npos);
+  EXPECT_NE(error_of("mapping: 3\n").find("expected a section"), std::string::npos);
+  // ORB-SLAM3 keys outside wardmap's sections are left alone (an ORB-SLAM3 file has many).
+  EXPECT_EQ(error_of("Viewer.KeyFrameSize: 0.05\n"), "");
+}
+
+// The documentation writes keys as `tracking.pose_solver`; written that way at the top level of a
+// settings file they act as in their section.
+TEST(FrontOptions, DottedKeysActAsInTheirSection) {
+  const FrontOptions o = load_front_options(io::parse_settings(
+      std::string(kBase) + "tracking.pose_solver: lm\nmapping.ba_max_keyframes: 7\nmapping:\n  keyframe_culling: false\n",
+      "dotted.yaml"));
+  EXPECT_EQ(o.tracking.pose_solver, "lm");
+  EXPECT_EQ(o.mapping.ba_max_keyframes, 7);
+  EXPECT_FALSE(o.mapping.keyframe_culling);
+  try {
+    io::parse_settings(std::string(kBase) + "tracking.pose_solver: lm\ntracking:\n  pose_solver: ceres\n", "twice.yaml");
+    FAIL() << "a key set twice was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'tracking.pose_solver' is set twice"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(io::parse_settings(std::string(kBase) + "tracking: 3\ntracking.pose_solver: lm\n", "t.yaml"), InputError);
+}
+
 }  // namespace wardmap::slam
