@@ -58,6 +58,8 @@ fs::path find_vocabulary(const fs::path& given) {
 }
 
 double run_slam_job(const SlamJob& job) {
+  // Before looking for its calibration: a mistyped path should be reported as such.
+  if (!fs::exists(job.sequence)) throw InputError(job.sequence.string(), "sequence not found (no such file or folder)");
   fs::path settings_file = job.settings;
   if (settings_file.empty()) {
     settings_file = job.sequence / "settings.yaml";

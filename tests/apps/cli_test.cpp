@@ -127,6 +127,20 @@ TEST(CliBadInput, OutIsAFile) {
                           "out.txt: --out names a file");
 }
 
+// A mistyped sequence path is reported as missing, not as a missing calibration; a misspelt
+// settings key is named with its line.
+TEST(CliBadInput, MissingSequenceAndUnknownSettingsKey) {
+  const fs::path root = scratch_dir();
+  expect_one_line_error(wardmap_cli("run " + shq(root / "absent") + " --out " + shq(root / "run")),
+                        "absent: sequence not found");
+  make_tum(root);
+  const fs::path settings = root / "settings.yaml";
+  write_fixture_settings(settings, "RGBD.DepthMapFactor: 5000.0\ntracking:\n  pose_solvr: lm\n");
+  expect_one_line_error(wardmap_cli("run " + shq(root) + " --settings " + shq(settings) + " --out " + shq(root / "run")),
+                        "key 'tracking.pose_solvr': not a key of section 'tracking' (did you mean 'tracking.pose_solver'?)");
+  EXPECT_FALSE(fs::exists(root / "run"));
+}
+
 TEST(CliBadInput, ModelsFolderFromSettingsIsUsedAndChecked) {
   const fs::path root = scratch_dir();
   make_tum(root);
