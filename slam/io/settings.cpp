@@ -95,7 +95,7 @@ void nest_dotted_keys(YAML::Node& root, const fs::path& file) {
       path = path.empty() ? parts[i] : path + "." + parts[i];
       if (parts[i].empty()) throw InputError(file.string(), "key '" + key + "': empty part in a dotted key", line);
       YAML::Node child = node[parts[i]];
-      if (!child) {
+      if (!child || child.IsNull()) {  // absent, or written empty ("tracking:")
         node[parts[i]] = YAML::Node(YAML::NodeType::Map);
         child = node[parts[i]];
       }
@@ -235,7 +235,7 @@ size_t edit_distance(const std::string& a, const std::string& b) {
 }  // namespace
 
 void SectionKeys::reject_unknown() const {
-  if (!section_) return;
+  if (!section_ || section_.IsNull()) return;  // absent, or written empty ("tracking:")
   if (!section_.IsMap())
     throw InputError(file_.string(), "key '" + name_ + "': expected a section (a mapping of keys)",
                      section_.Mark().line + 1);

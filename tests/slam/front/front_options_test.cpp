@@ -33,6 +33,9 @@ TEST(FrontOptions, TrackingAndMappingSectionsOverrideDefaults) {
   EXPECT_EQ(o.matcher.th_low, 40);
   EXPECT_EQ(o.mapping.ba_max_keyframes, 7);
   EXPECT_FALSE(o.mapping.keyframe_culling);
+  EXPECT_EQ(load_front_options(io::parse_settings(std::string(kBase) + "tracking:\ntracking.pose_solver: lm\n", "e.yaml"))
+                .tracking.pose_solver,
+            "lm");
   EXPECT_DOUBLE_EQ(o.mapping.inline_busy_seconds, 0.05);
   EXPECT_DOUBLE_EQ(o.mapping.min_parallax_deg_mono, 2.5);
   EXPECT_FALSE(o.mapping.sequence_time_for_mapper);
@@ -97,6 +100,7 @@ TEST(FrontOptions, UnknownKeysInTheSectionsAreErrors) {
   EXPECT_NE(misplaced.find("'tracking.redundant_ratio'"), std::string::npos) << misplaced;
   EXPECT_NE(error_of("mapping:\n  nonsense: 1\n").find("'mapping.nonsense'"), std::string::npos);
   EXPECT_NE(error_of("mapping: 3\n").find("expected a section"), std::string::npos);
+  EXPECT_EQ(error_of("mapping:\n"), "");  // an empty section
   // ORB-SLAM3 keys outside wardmap's sections are left alone (an ORB-SLAM3 file has many).
   EXPECT_EQ(error_of("Viewer.KeyFrameSize: 0.05\n"), "");
 }
@@ -110,6 +114,9 @@ TEST(FrontOptions, DottedKeysActAsInTheirSection) {
   EXPECT_EQ(o.tracking.pose_solver, "lm");
   EXPECT_EQ(o.mapping.ba_max_keyframes, 7);
   EXPECT_FALSE(o.mapping.keyframe_culling);
+  EXPECT_EQ(load_front_options(io::parse_settings(std::string(kBase) + "tracking:\ntracking.pose_solver: lm\n", "e.yaml"))
+                .tracking.pose_solver,
+            "lm");
   try {
     io::parse_settings(std::string(kBase) + "tracking.pose_solver: lm\ntracking:\n  pose_solver: ceres\n", "twice.yaml");
     FAIL() << "a key set twice was accepted";
