@@ -100,11 +100,8 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   SemanticOptions o;
   if (!s) return o;
   SectionKeys sk(s, "semantics", file);
-  for (const char* sub : {"keyframes", "measurement", "groups", "association", "pose_selection", "monocular"}) sk.know(sub);
-  sk.reject_unknown();
-  SectionKeys kfk(s["keyframes"], "semantics.keyframes", file), mk(s["measurement"], "semantics.measurement", file),
-      gk(s["groups"], "semantics.groups", file), ak(s["association"], "semantics.association", file),
-      pk(s["pose_selection"], "semantics.pose_selection", file), mok(s["monocular"], "semantics.monocular", file);
+  SectionKeys kfk = sk.section("keyframes"), mk = sk.section("measurement"), gk = sk.section("groups"),
+              ak = sk.section("association"), pk = sk.section("pose_selection"), mok = sk.section("monocular");
   kfk.read("min_translation", o.keyframes.min_translation);
   kfk.read("min_rotation_deg", o.keyframes.min_rotation_deg);
   kfk.read("max_interval", o.keyframes.max_interval);
@@ -194,7 +191,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
     }
   }
   mok.read("min_scale_estimates", o.monocular.min_scale_estimates);
-  for (const SectionKeys* k : {&kfk, &mk, &gk, &ak, &pk, &mok}) k->reject_unknown();
+  for (const SectionKeys* k : {&sk, &kfk, &mk, &gk, &ak, &pk, &mok}) k->reject_unknown();
   if (auto err = o.validate()) throw InputError(file.string(), *err);
   return o;
 }

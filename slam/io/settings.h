@@ -58,8 +58,14 @@ class SectionKeys {
     known_.push_back(key);
     read_option(section_, name_, key, value, file_);
   }
-  // A key read some other way (a list, a subsection).
+  // A key read some other way (a list).
   void know(const std::string& key) { known_.push_back(key); }
+  // The subsection `key` (e.g. "groups" of "semantics"), which becomes a known key here; its own
+  // keys are checked by its reject_unknown.
+  SectionKeys section(const std::string& key) {
+    known_.push_back(key);
+    return SectionKeys(section_ && section_.IsMap() ? section_[key] : YAML::Node(), name_ + "." + key, file_);
+  }
   const YAML::Node& node() const { return section_; }
   // Throws InputError "key 'tracking.pose_solvr': not a key of section 'tracking' (did you mean
   // 'tracking.pose_solver'?)" for the first key of the section that is not known, with its line.
