@@ -21,14 +21,17 @@ namespace {
 
 const char* kKitchen = "7scenes-redkitchen";
 
+slam::io::Settings shipped_settings(const char* name) {
+  return slam::io::load_settings(std::filesystem::path(WARDMAP_PROJECT_DIR) / "data/settings" / name);
+}
+
 // ORB extraction per frame of a shared sequence: 20 frames spread over its first 200, with its
 // settings' ORB options (7-Scenes: 1000 features at 640x480; KITTI 03: 2000 at 1241x376).
 void orb_extract(benchmark::State& state, const char* sequence, const char* settings_name) {
   const auto root = data_dir() / sequence;
   if (!std::filesystem::exists(root)) return state.SkipWithError("shared sequence not found");
   auto reader = slam::io::open_sequence(root);
-  const slam::FrontOptions options = slam::load_front_options(
-      slam::io::load_settings(std::filesystem::path(WARDMAP_PROJECT_DIR) / "data/settings" / settings_name));
+  const slam::FrontOptions options = slam::load_front_options(shipped_settings(settings_name));
   slam::OrbExtractor extractor(options.orb);
   std::vector<cv::Mat> grey;
   for (size_t i = 0; i < 20; ++i) {
@@ -61,8 +64,7 @@ void run_front(benchmark::State& state, const char* sequence, const char* settin
                double target_ms) {
   const auto root = data_dir() / sequence;
   if (!std::filesystem::exists(root)) return state.SkipWithError("shared sequence not found");
-  const slam::io::Settings settings =
-      slam::io::load_settings(std::filesystem::path(WARDMAP_PROJECT_DIR) / "data/settings" / settings_name);
+  const slam::io::Settings settings = shipped_settings(settings_name);
   slam::FrontOptions options = slam::load_front_options(settings);
   options.monocular = mono;
   options.mapping_thread = true;
