@@ -2,8 +2,8 @@
 
 #include <sstream>
 
-#include "semantics/detection/yaml_keys.h"
 #include "slam/core/errors.h"
+#include "slam/io/settings.h"
 
 namespace wardmap::semantics {
 
@@ -53,37 +53,34 @@ std::optional<std::string> DetectorOptions::validate() const {
 
 DetectorOptions detector_options_from_yaml(const YAML::Node& section, const std::filesystem::path& file,
                                            const std::string& name) {
-  using detail::yaml_read_optional;
   DetectorOptions o;
-  if (!section) return o;
-  if (!section.IsMap())
-    throw InputError(file.string(), "key '" + name + "': expected a mapping", detail::yaml_line(section));
-  yaml_read_optional(section, name, "kind", o.kind, file, "a string");
-  yaml_read_optional(section, name, "score_threshold", o.score_threshold, file, "a number");
-  yaml_read_optional(section, name, "nms_iou", o.nms_iou, file, "a number");
-  std::string dir;
-  yaml_read_optional(section, name, "models_dir", dir, file, "a path");
-  if (!dir.empty()) o.models_dir = dir;
-  std::string description;
-  yaml_read_optional(section, name, "model_description", description, file, "a path");
-  if (!description.empty()) o.model_description = description;
-  yaml_read_optional(section, name, "landmark_set", o.landmark_set, file, "a string");
-  const YAML::Node a = section["annotations"];
-  const std::string p = name + ".annotations";
+  slam::io::SectionKeys dk(section, name, file);
+  dk.read("kind", o.kind);
+  dk.read("score_threshold", o.score_threshold);
+  dk.read("nms_iou", o.nms_iou);
+  std::string dir = o.models_dir.string(), description = o.model_description.string();
+  dk.read("models_dir", dir);
+  dk.read("model_description", description);
+  o.models_dir = dir;
+  o.model_description = description;
+  dk.read("landmark_set", o.landmark_set);
+  slam::io::SectionKeys ak = dk.section("annotations");
   AnnotationNoise& n = o.noise;
-  yaml_read_optional(a, p, "seed", n.seed, file, "a non-negative integer");
-  yaml_read_optional(a, p, "box_jitter", n.box_jitter, file, "a number");
-  yaml_read_optional(a, p, "miss_probability", n.miss_probability, file, "a number");
-  yaml_read_optional(a, p, "low_visible_fraction", n.low_visible_fraction, file, "a number");
-  yaml_read_optional(a, p, "low_visible_miss_probability", n.low_visible_miss_probability, file, "a number");
-  yaml_read_optional(a, p, "false_positives_per_frame", n.false_positives_per_frame, file, "a number");
-  yaml_read_optional(a, p, "confusion_probability", n.confusion_probability, file, "a number");
-  yaml_read_optional(a, p, "min_visible", n.min_visible, file, "a number");
-  yaml_read_optional(a, p, "score_base", n.score_base, file, "a number");
-  yaml_read_optional(a, p, "score_visible_gain", n.score_visible_gain, file, "a number");
-  yaml_read_optional(a, p, "score_std", n.score_std, file, "a number");
-  yaml_read_optional(a, p, "image_width", n.image_width, file, "an integer");
-  yaml_read_optional(a, p, "image_height", n.image_height, file, "an integer");
+  ak.read("seed", n.seed);
+  ak.read("box_jitter", n.box_jitter);
+  ak.read("miss_probability", n.miss_probability);
+  ak.read("low_visible_fraction", n.low_visible_fraction);
+  ak.read("low_visible_miss_probability", n.low_visible_miss_probability);
+  ak.read("false_positives_per_frame", n.false_positives_per_frame);
+  ak.read("confusion_probability", n.confusion_probability);
+  ak.read("min_visible", n.min_visible);
+  ak.read("score_base", n.score_base);
+  ak.read("score_visible_gain", n.score_visible_gain);
+  ak.read("score_std", n.score_std);
+  ak.read("image_width", n.image_width);
+  ak.read("image_height", n.image_height);
+  dk.reject_unknown();
+  ak.reject_unknown();
   if (auto problem = o.validate()) throw InputError(file.string(), "key '" + name + "." + problem->substr(1));
   return o;
 }

@@ -186,6 +186,7 @@ WARDMAP_READ_OPTION(double, "a number")
 WARDMAP_READ_OPTION(int, "an integer")
 WARDMAP_READ_OPTION(bool, "true or false")
 WARDMAP_READ_OPTION(std::string, "a string")
+WARDMAP_READ_OPTION(std::uint64_t, "a non-negative integer")
 #undef WARDMAP_READ_OPTION
 
 void check_range(double value, double lo, double hi, const std::string& full_key, const fs::path& file) {

@@ -4,6 +4,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -46,6 +47,8 @@ void read_option(const YAML::Node& section, const std::string& section_name, con
                  const std::filesystem::path& file);
 void read_option(const YAML::Node& section, const std::string& section_name, const std::string& key, std::string& value,
                  const std::filesystem::path& file);
+void read_option(const YAML::Node& section, const std::string& section_name, const std::string& key,
+                 std::uint64_t& value, const std::filesystem::path& file);
 // The options one loader reads from one wardmap section (or subsection, e.g. "semantics.groups"),
 // remembering the keys it knows, so that a key it does not know (misspelt, or from another
 // section) is an error rather than silently ignored.

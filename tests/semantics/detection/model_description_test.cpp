@@ -190,6 +190,20 @@ TEST(DetectorOptions, ValidateAndYamlNameTheKey) {
   EXPECT_NE(error("annotations: {miss_probability: 2}").find("key 'detection.annotations.miss_probability' must be"),
             std::string::npos);
   EXPECT_NE(error("landmark_set: harbour").find("key 'detection.landmark_set'"), std::string::npos);
+  // A misspelt key, in the section or in its annotations subsection, is an error with its line and
+  // the nearest known key, not a silently kept default.
+  EXPECT_NE(error("kind: annotations\nscore_treshold: 0.5\n")
+                .find("s.yaml:2: key 'detection.score_treshold': not a key of section 'detection' (did you mean "
+                      "'detection.score_threshold'?)"),
+            std::string::npos);
+  EXPECT_NE(error("annotations:\n  miss_probabilty: 0.2\n")
+                .find("s.yaml:2: key 'detection.annotations.miss_probabilty': not a key of section "
+                      "'detection.annotations' (did you mean 'detection.annotations.miss_probability'?)"),
+            std::string::npos);
+  EXPECT_NE(error("annotations: {seed: -3}").find("key 'detection.annotations.seed': expected a non-negative integer"),
+            std::string::npos);
+  EXPECT_NE(error("- yolox").find("key 'detection': expected a section"), std::string::npos);
+  EXPECT_EQ(detector_options_from_yaml(YAML::Load("models_dir: /opt/models"), "s.yaml").models_dir, "/opt/models");
 }
 
 TEST(Letterbox, TopLeftWithPadding) {
