@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <fstream>
+#include <initializer_list>
 #include <set>
 
 #include "semantics/detection/model_search.h"
 #include "semantics/detection/yaml_keys.h"
 #include "slam/core/errors.h"
+#include "slam/io/settings.h"
 
 namespace wardmap::semantics {
 
@@ -18,6 +20,15 @@ using detail::yaml_line;
 using detail::yaml_required;
 
 namespace {
+
+// A key of `n` outside `keys` (misspelt, "pad_valeu") is an error naming its line and the nearest
+// key, rather than a default silently kept; prefix "" is the document's top level.
+void reject_unknown_keys(const YAML::Node& n, const std::string& prefix, std::initializer_list<const char*> keys,
+                         const fs::path& file) {
+  slam::io::SectionKeys known(n, prefix, file);
+  for (const char* k : keys) known.know(k);
+  known.reject_unknown();
+}
 
 YAML::Node load_yaml(const fs::path& file) {
   if (!fs::is_regular_file(file)) throw InputError(file.string(), "model description not found");
@@ -99,6 +110,8 @@ void read_input(const YAML::Node& root, const fs::path& file, InputSpec& in) {
   in.std = triple(n, "input", "std", file, in.std, true);
   detail::yaml_read_optional(n, "input", "pad_value", in.pad_value, file, "a number");
   detail::yaml_read_optional(n, "input", "pad_after_normalisation", in.pad_after_normalisation, file, "true or false");
+  reject_unknown_keys(n, "input",
+                      {"width", "height", "channel_order", "mean", "std", "pad_value", "pad_after_normalisation"}, file);
 }
 
 void read_output(const YAML::Node& root, const std::string& decoder, const fs::path& file, OutputSpec& out) {
@@ -123,6 +136,9 @@ void read_output(const YAML::Node& root, const std::string& decoder, const fs::p
       throw InputError(file.string(), "key 'output.box_names': need one box output per stride",
                        yaml_line(n["box_names"]));
     out.bins = positive_int(n, "output", "bins", file, 64);
+    reject_unknown_keys(n, "output", {"strides", "names", "box_names", "bins"}, file);
+  } else {
+    reject_unknown_keys(n, "output", {"strides", "names"}, file);
   }
 }
 
@@ -178,6 +194,7 @@ std::vector<std::string> ModelDescription::class_to_landmark(const std::string& 
 ModelDescription load_model_description(const fs::path& yaml_file, const fs::path& models_dir) {
   const YAML::Node root = load_yaml(yaml_file);
   if (!root.IsMap()) throw InputError(yaml_file.string(), "expected a YAML mapping (see models/README.md)");
+  reject_unknown_keys(root, "", {"name", "file", "decoder", "input", "output", "classes", "landmark_sets"}, yaml_file);
   ModelDescription d;
   d.description_file = yaml_file;
   d.name = yaml_as<std::string>(yaml_required(root, "", "name", yaml_file), "name", yaml_file, "a string");
@@ -202,6 +219,7 @@ ModelDescription load_model_description(const fs::path& yaml_file, const fs::pat
         yaml_file.parent_path() / yaml_as<std::string>(sets, "landmark_sets", yaml_file, "a file");
     // The shared file has the same shape as the inline form: a top-level `landmark_sets:` mapping.
     const YAML::Node shared = load_yaml(sets_file);
+    reject_unknown_keys(shared, "", {"landmark_sets"}, sets_file);
     d.landmark_sets = read_landmark_sets(yaml_required(shared, "", "landmark_sets", sets_file), sets_file,
                                          "landmark_sets", d.classes);
   } else {

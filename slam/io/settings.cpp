@@ -252,7 +252,8 @@ void SectionKeys::reject_unknown() const {
         best = k;
       }
     }
-    std::string message = "key '" + full(name_, key) + "': not a key of section '" + name_ + "'";
+    std::string message = "key '" + full(name_, key) + "': " +
+                          (name_.empty() ? std::string("not a known key") : "not a key of section '" + name_ + "'");
     if (!best.empty()) message += " (did you mean '" + full(name_, best) + "'?)";
     throw InputError(file_.string(), message, kv.first.Mark().line + 1);
   }

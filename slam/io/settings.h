@@ -72,7 +72,8 @@ class SectionKeys {
   const YAML::Node& node() const { return section_; }
   // Throws InputError "key 'tracking.pose_solvr': not a key of section 'tracking' (did you mean
   // 'tracking.pose_solver'?)" for the first key of the section that is not known, with its line.
-  // Also rejects a section that is not a mapping.
+  // Also rejects a section that is not a mapping. With an empty name (a whole document's top level)
+  // the message is "key 'x': not a known key".
   void reject_unknown() const;
 
  private:

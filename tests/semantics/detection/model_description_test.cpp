@@ -90,6 +90,15 @@ TEST(ModelDescription, ErrorsNameTheKey) {
   EXPECT_NE(error_of_description("bins: 8", "bins: 0").find("key 'output.bins'"), std::string::npos);
   EXPECT_NE(error_of_description("channel_order: bgr", "channel_order: hsv").find("key 'input.channel_order'"),
             std::string::npos);
+  // A misspelt optional key would otherwise leave the default preprocessing in place without a word.
+  EXPECT_NE(error_of_description("  pad_value: 0", "  pad_valeu: 0")
+                .find(":12: key 'input.pad_valeu': not a key of section 'input' (did you mean 'input.pad_value'?)"),
+            std::string::npos);
+  EXPECT_NE(error_of_description("  bins: 8", "  bins: 8\n  bin: 8").find("key 'output.bin': not a key of section"),
+            std::string::npos);
+  EXPECT_NE(error_of_description("decoder: nanodet", "decoder: nanodet\ndecodr: yolox")
+                .find("key 'decodr': not a known key (did you mean 'decoder'?)"),
+            std::string::npos);
   const std::string e = error_of_description("classes: coco80.names", "classes: coco80.names\n# x");
   EXPECT_EQ(e, "(no error)");
   // A landmark mapping from a class the detector does not have.
