@@ -116,10 +116,15 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
 
   // One cost function per observation, shared by both solves (the problems do not own them).
   std::vector<std::unique_ptr<ceres::CostFunction>> costs(observations.size());
+  // One Huber loss per kind of observation, shared by its residual blocks (a loss holds only its
+  // threshold), instead of one allocated and freed per observation and solve.
+  ceres::HuberLoss huber_mono(std::sqrt(options.tracking.chi2_mono));
+  ceres::HuberLoss huber_stereo(std::sqrt(options.tracking.chi2_stereo));
   auto solve = [&](bool robust, int iterations) {
     ceres::Problem::Options po;
     po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     po.disable_all_safety_checks = true;  // the blocks are ours and valid; saves time building
     ceres::Problem problem(po);
     ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::EuclideanManifold<3>> pose_manifold;
@@ -128,9 +133,7 @@ LocalBAResult local_bundle_adjustment(const std::shared_ptr<KeyFrame>& keyframe,
       if (!inlier[i]) continue;
       const BAObservation& o = observations[i];
       const bool stereo = costs[i]->num_residuals() == 3;
-      ceres::LossFunction* loss =
-          robust ? new ceres::HuberLoss(std::sqrt(stereo ? options.tracking.chi2_stereo : options.tracking.chi2_mono))
-                 : nullptr;
+      ceres::LossFunction* loss = robust ? (stereo ? &huber_stereo : &huber_mono) : nullptr;
       double* pose = pose_blocks[pose_index.at(o.keyframe->id())].data();
       double* point = position_blocks[position_index.at(o.point->id())].data();
       problem.AddResidualBlock(costs[i].get(), loss, pose, point);
