@@ -25,4 +25,9 @@ inline int descriptor_distance(const unsigned char* a, const unsigned char* b) {
   return d;
 }
 
+// RUMI Formula 1: keypoint p of the query frame matches map point P when D(d(p), d(P)) < Th_d.
+// wardmap keeps ORB-SLAM's inclusive thresholds (th_high 100 for projection searches, th_low 50
+// elsewhere), so Th_d = th + 1.
+inline bool descriptor_matches(int distance, int th) { return distance <= th; }
+
 }  // namespace wardmap::slam

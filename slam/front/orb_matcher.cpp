@@ -67,7 +67,7 @@ int OrbMatcher::search_by_projection(Frame& current, const Frame& last, double r
       if (cf.right_u[static_cast<size_t>(j)] >= 0 && std::abs(ur - cf.right_u[static_cast<size_t>(j)]) > r) continue;
       best.offer(descriptor_distance(d, cf.descriptor(static_cast<size_t>(j))), j, cf.levels[static_cast<size_t>(j)]);
     }
-    if (best.dist > o_.th_high) continue;
+    if (!descriptor_matches(best.dist, o_.th_high)) continue;
     current.map_points[static_cast<size_t>(best.idx)] = mp;
     current.outlier[static_cast<size_t>(best.idx)] = 0;
     ++matches;
@@ -100,7 +100,7 @@ int OrbMatcher::search_by_projection(Frame& current, const std::vector<Projectio
       if (c.right_u >= 0 && cf.right_u[js] >= 0 && std::abs(c.right_u - cf.right_u[js]) > r) continue;
       best.offer(descriptor_distance(d, cf.descriptor(js)), j, cf.levels[js]);
     }
-    if (best.dist > o_.th_high) continue;
+    if (!descriptor_matches(best.dist, o_.th_high)) continue;
     if (best.level == best.level2 && best.dist > o_.ratio_projection * best.dist2) continue;
     current.map_points[static_cast<size_t>(best.idx)] = c.point;
     current.outlier[static_cast<size_t>(best.idx)] = 0;
@@ -127,7 +127,7 @@ int OrbMatcher::search_by_knn(const KeyFrame& keyframe, Frame& frame) const {
   for (const auto& m : knn) {
     if (m.empty()) continue;
     const int d = static_cast<int>(m[0].distance);
-    if (d > o_.th_low) continue;
+    if (!descriptor_matches(d, o_.th_low)) continue;
     if (m.size() > 1 && d > o_.ratio_knn * m[1].distance) continue;
     const size_t j = static_cast<size_t>(m[0].trainIdx);
     if (d < best_dist[j]) {
@@ -161,7 +161,7 @@ std::vector<int> OrbMatcher::search_for_initialisation(const FrameFeatures& f1, 
     Best best;
     for (int j : f2.grid.in_area(prior[i].x(), prior[i].y(), window, level, level))
       best.offer(descriptor_distance(f1.descriptor(i), f2.descriptor(static_cast<size_t>(j))), j, 0);
-    if (best.idx < 0 || best.dist > o_.th_low || best.dist >= ratio * best.dist2) continue;
+    if (best.idx < 0 || !descriptor_matches(best.dist, o_.th_low) || best.dist >= ratio * best.dist2) continue;
     const size_t j = static_cast<size_t>(best.idx);
     if (best.dist >= dist21[j]) continue;
     if (m21[j] >= 0) m12[static_cast<size_t>(m21[j])] = -1;  // a closer f1 keypoint takes it
@@ -216,7 +216,7 @@ std::vector<std::pair<int, int>> OrbMatcher::search_for_triangulation(const KeyF
       const size_t js = static_cast<size_t>(j);
       if (!free2[js]) continue;
       const int d = descriptor_distance(f1.descriptor(i), f2.descriptor(js));
-      if (d > o_.th_low || d > best.dist) continue;
+      if (!descriptor_matches(d, o_.th_low) || d > best.dist) continue;
       const Eigen::Vector2d& p2 = f2.points[js];
       const double s2 = f2.pyramid->scale[static_cast<size_t>(f2.levels[js])];
       if (f1.levels[i] == 0 && (p2 - epipole).squaredNorm() < 100 * s2 * s2) continue;
@@ -297,7 +297,7 @@ int OrbMatcher::fuse(const std::shared_ptr<KeyFrame>& kf, const std::vector<std:
       }
       best.offer(descriptor_distance(mp->descriptor().ptr<uchar>(), f.descriptor(js)), j, kl);
     }
-    if (best.dist > o_.th_low) continue;
+    if (!descriptor_matches(best.dist, o_.th_low)) continue;
     const size_t j = static_cast<size_t>(best.idx);
     const auto& existing = kf->map_point(j);
     if (existing && !existing->bad()) {
