@@ -239,16 +239,18 @@ TEST(CliPipeline, MonocularRunIsAccurateAndDeterministic) {
 // Monocular SLAM then objects: measured on the keyframes' map points, never on the sequence's depth
 // images, with the map brought to metres by the upright detections' heights. The scale is checked
 // against the ground truth's (the report's Sim(3) alignment scale) and the objects' positions too.
+// 300 frames: the first 250 of ward slow hold only 5-14 usable detections of the scale classes (5
+// needed), the first 300 hold 36-51.
 TEST(CliPipeline, MonocularObjectsAreMeasuredOnMapPointsAtAMetricScale) {
   const fs::path dir = scratch_dir();
-  ASSERT_EQ(wardmap_cli("-q synth --scenario ward --variant slow --frames 150 --out " + shq(dir / "seq")).code, 0);
+  ASSERT_EQ(wardmap_cli("-q synth --scenario ward --variant slow --frames 300 --out " + shq(dir / "seq")).code, 0);
   const CliResult r = wardmap_cli("-q run " + shq(dir / "seq") +
                                   " --mode mono --deterministic --objects --no-embedding --out " + shq(dir / "run"));
   ASSERT_EQ(r.code, 0) << r.output;
   const auto report = nlohmann::json::parse(read_all(dir / "run" / "objects_report.json"));
   const auto& scale = report.at("monocular_scale");
   ASSERT_TRUE(scale.at("metres_per_map_unit").is_number()) << scale.dump();
-  EXPECT_GE(scale.at("estimates").get<int>(), 5);
+  EXPECT_GE(scale.at("estimates").get<int>(), 20) << scale.dump();  // 36-51 at 300 frames
   const double ratio = scale.at("ground_truth_over_estimate").get<double>();
   EXPECT_GT(ratio, 0.8) << scale.dump();
   EXPECT_LT(ratio, 1.25) << scale.dump();
