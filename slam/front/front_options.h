@@ -124,8 +124,7 @@ struct MappingOptions {
   // mapper keeps a keyframe on nearly every KITTI frame and every second synthetic one, so the
   // nearest neighbours' rays are nearly parallel: at 2 degrees a feature waits for a wider pair
   // among the neighbours, and its depth is better conditioned (KITTI 03 --realtime 0.68-0.81 m in
-  // seven runs, 0.89-0.95 m in three alternated at 1.146; docs/EXPERIMENTS.md, "Triangulation
-  // parallax").
+  // ten runs against 0.89-0.95 m; docs/EXPERIMENTS.md, "Triangulation parallax").
   double min_parallax_deg_mono = 2.0;      // mapping.min_parallax_deg_mono
 };
 
