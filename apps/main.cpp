@@ -7,6 +7,7 @@
 #include <exception>
 
 #include "apps/commands/commands.h"
+#include "apps/interrupt.h"
 #include "slam/core/errors.h"
 
 int main(int argc, char** argv) {
@@ -37,6 +38,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return 2;  // usage errors exit like bad input
+  } catch (const wardmap::apps::Interrupted& e) {
+    std::fprintf(stderr, "wardmap: %s\n", e.what());
+    return 128 + e.signal();  // as a shell reports a process ended by that signal
   } catch (const wardmap::InputError& e) {
     std::fprintf(stderr, "wardmap: error: %s\n", e.what());
     return 2;

@@ -13,6 +13,7 @@
 
 #include "apps/detection_cache.h"
 #include "apps/frame_prefetcher.h"
+#include "apps/interrupt.h"
 #include "apps/progress.h"
 #include "slam/core/errors.h"
 #include "slam/eval/trajectory_eval.h"
@@ -117,7 +118,14 @@ double run_slam_job(const SlamJob& job) {
   // --deterministic tracks and maps on this thread: the next frames are decoded on the idle core. A
   // threaded run's tracker and mapper keep both cores busy, and it reads here.
   FramePrefetcher frames(*reader, job.deterministic ? 2 : 0);
+  // A first Ctrl-C (or SIGTERM) while frames are tracked stops after the frame in hand, and the
+  // run folder is written for the frames so far; a second one quits at once. After tracking the
+  // signals have their default action again (outputs are written whole or not at all).
+  std::optional<InterruptScope> interrupt_scope(std::in_place);
+  int interrupted = 0;
+  size_t processed = 0;
   for (size_t i = 0; i < reader->size(); ++i) {
+    if ((interrupted = InterruptScope::requested())) break;
     progress.update(i + 1);
     const slam::io::Frame frame = frames.next();
     if (job.realtime) {  // the frame is delivered at its own time, measured from the first one's
@@ -146,9 +154,14 @@ double run_slam_job(const SlamJob& job) {
     timing_csv += line;
     seconds.push_back(r.seconds);
     wait_seconds += r.wait_seconds;
+    processed = i + 1;
   }
-  front.finish();
   progress.finish();
+  if (interrupted)
+    spdlog::warn("{}: stopped after frame {} of {}; writing the run folder for those frames{} (again to quit at once)",
+                 signal_name(interrupted), processed, reader->size(), job.objects ? ", without objects" : "");
+  front.finish();
+  interrupt_scope.reset();
   for (size_t k = 0; k < stamps.size(); ++k) {
     std::snprintf(line, sizeof line, "%.6f,%s,%d\n", stamps[k], statuses[k].c_str(), submap_of[k]);
     frames_csv += line;
@@ -157,7 +170,7 @@ double run_slam_job(const SlamJob& job) {
   const slam::Trajectory traj = front.trajectory();
   json report = {{"sequence", job.sequence.string()}, {"mode", mode}, {"settings", settings_file.string()},
                  {"realtime", job.realtime},
-                 {"frames", reader->size()}, {"frames_in_final_map", traj.size()}, {"submaps", front.submaps().size()},
+                 {"frames", reader->size()}, {"frames_processed", processed}, {"frames_in_final_map", traj.size()}, {"submaps", front.submaps().size()},
                  {"tracking_ms", {{"median", 1e3 * percentile(seconds, 0.5)}, {"p95", 1e3 * percentile(seconds, 0.95)},
                                   {"max", 1e3 * percentile(seconds, 1.0)}}},
                  // keyframes the threaded mapper registered without fusion, BA and culling (it was behind)
@@ -167,6 +180,7 @@ double run_slam_job(const SlamJob& job) {
                  // the tracker waiting for a threaded mapper still busy (the sequence time since the last
                  // keyframe, or mapping.max_lag_frames after it)
                  {"mapper_wait_seconds", wait_seconds}};
+  if (interrupted) report["interrupted"] = signal_name(interrupted);
   {
     // What local mapping did, over the run (all submaps).
     const auto& m = front.mapper_stats();
@@ -185,6 +199,9 @@ double run_slam_job(const SlamJob& job) {
                    (job.deterministic ? ", deterministic (mapping inline)" : job.realtime ? ", threaded, input at the sequence's rate (--realtime)" : ", threaded") +
                    "\n- frames: " + std::to_string(reader->size()) + ", in the final map: " + std::to_string(traj.size()) +
                    ", submaps: " + std::to_string(front.submaps().size()) + "\n";
+  if (interrupted)
+    md += "- interrupted (" + signal_name(interrupted) + ") after frame " + std::to_string(processed) + " of " +
+          std::to_string(reader->size()) + ": the figures below are for those frames\n";
   char buf[256];
   std::snprintf(buf, sizeof buf, "- tracking time per frame: median %.1f ms, p95 %.1f ms\n", 1e3 * percentile(seconds, 0.5),
                 1e3 * percentile(seconds, 0.95));
@@ -205,7 +222,11 @@ double run_slam_job(const SlamJob& job) {
     md += buf;
   }
   if (info.has_ground_truth && traj.size() >= 3) {
-    const auto& gt = reader->ground_truth();
+    // An interrupted run is evaluated on the ground truth up to its last frame.
+    slam::Trajectory gt;
+    for (size_t k = 0; k < reader->ground_truth().size(); ++k)
+      if (!interrupted || reader->ground_truth().timestamps[k] <= stamps.back() + 1e-9)
+        gt.push_back(reader->ground_truth().timestamps[k], reader->ground_truth().poses[k]);
     const auto pairs = slam::eval::associate(gt, traj, {});
     rate = slam::eval::tracking_rate(gt, traj, {});
     if (pairs.size() >= 3) {
@@ -227,7 +248,8 @@ double run_slam_job(const SlamJob& job) {
     md += buf;
     std::printf("tracking rate %.1f %%\n", rate);
   }
-  std::printf("frames %zu, in the final map %zu, submaps %zu, median tracking time %.1f ms\n", reader->size(), traj.size(),
+  std::printf("frames %zu%s, in the final map %zu, submaps %zu, median tracking time %.1f ms\n", processed,
+              interrupted ? (" of " + std::to_string(reader->size()) + " (interrupted)").c_str() : "", traj.size(),
               front.submaps().size(), 1e3 * percentile(seconds, 0.5));
 
   if (!job.out.empty()) {
@@ -270,7 +292,7 @@ double run_slam_job(const SlamJob& job) {
                                                       "\nproperty float x\nproperty float y\nproperty float z\nend_header\n" +
                                                       ply_body);
     report["keyframes"] = kfs.size();
-    if (job.objects) {
+    if (job.objects && !interrupted) {
       SemanticJob& sj = objects_job;
       sj.keyframes = &kfs;
       sj.trajectory = &traj;
@@ -285,6 +307,11 @@ double run_slam_job(const SlamJob& job) {
     io::write_file_atomic(job.out / "report.md", md);
     std::printf("outputs in %s\n", job.out.c_str());
   }
+  if (interrupted)
+    throw Interrupted(interrupted, "interrupted (" + signal_name(interrupted) + ") after frame " + std::to_string(processed) +
+                                       " of " + std::to_string(reader->size()) + "; " +
+                                       (job.out.empty() ? std::string("nothing written (no --out)")
+                                                        : "the run folder " + job.out.string() + " holds those frames"));
   return rate;
 }
 
