@@ -2,11 +2,10 @@
 
 #include <spdlog/spdlog.h>
 
-#include <chrono>
-#include <cstdio>
 #include <memory>
 #include <string>
 
+#include "apps/progress.h"
 #include "sim/scenario.h"
 #include "sim/sequence.h"
 #include "sim/writer.h"
@@ -24,27 +23,6 @@ struct SynthArgs {
   std::string out;
 };
 
-// "\r[#########           ] 120/300 frames, 48 fps" on stderr.
-class ProgressBar {
- public:
-  void update(int done, int total) {
-    const auto now = std::chrono::steady_clock::now();
-    if (done < total && now - last_ < std::chrono::milliseconds(200)) return;  // a few redraws a second
-    last_ = now;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const int width = 30, filled = total > 0 ? done * width / total : width;
-    const double fps = elapsed > 0 ? done / elapsed : 0.0;
-    std::fprintf(stderr, "\r[%s%s] %d/%d frames, %.0f fps", std::string(static_cast<size_t>(filled), '#').c_str(),
-                 std::string(static_cast<size_t>(width - filled), ' ').c_str(), done, total, fps);
-    if (done == total) std::fprintf(stderr, "\n");
-    std::fflush(stderr);
-  }
-
- private:
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-  std::chrono::steady_clock::time_point last_{};
-};
-
 void run_synth(const SynthArgs& a) {
   const auto file = sim::resolve_scenario(a.scenario);
   sim::Scenario scenario = sim::load_scenario(file);
@@ -58,8 +36,9 @@ void run_synth(const SynthArgs& a) {
   spdlog::info("synth: scenario '{}' ({}), variant {}, seed {}: {} frames at {}x{}, {} objects -> {}",
                sequence.scenario().name, file.string(), a.variant, a.seed, sequence.frame_count(), a.width, a.height,
                sequence.scene().objects.size(), a.out);
-  ProgressBar bar;
-  sim::write_sequence(sequence, a.out, [&bar](int done, int total) { bar.update(done, total); });
+  Progress progress("synth", static_cast<size_t>(sequence.frame_count()), true);  // on a terminal only
+  sim::write_sequence(sequence, a.out, [&progress](int done, int) { progress.update(static_cast<size_t>(done)); });
+  progress.finish();
   spdlog::info("synth: wrote {}", a.out);
 }
 
