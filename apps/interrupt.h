@@ -8,6 +8,7 @@
 
 namespace wardmap::apps {
 
+// One scope at a time (the handlers and the request are process-wide).
 class InterruptScope {
  public:
   InterruptScope();   // installs the handlers (SIGINT, SIGTERM) and clears any earlier request
