@@ -58,14 +58,27 @@ fs::path find_vocabulary(const fs::path& given) {
   return {};
 }
 
+fs::path default_settings(const fs::path& sequence) {
+  if (fs::exists(sequence / "settings.yaml")) return sequence / "settings.yaml";
+  const auto reader = slam::io::open_sequence(sequence);
+  const auto& in = reader->info();
+  const std::string name = slam::io::suggest_settings_name(slam::io::to_string(in.kind), in.root, in.width);
+  if (name.empty()) return {};
+  for (const fs::path& dir : {fs::path(WARDMAP_SOURCE_DIR) / "data/settings", fs::path("data/settings")})
+    if (fs::exists(dir / name)) return dir / name;
+  return {};
+}
+
 double run_slam_job(const SlamJob& job) {
   // Before looking for its calibration: a mistyped path should be reported as such.
   if (!fs::exists(job.sequence)) throw InputError(job.sequence.string(), "sequence not found (no such file or folder)");
   fs::path settings_file = job.settings;
   if (settings_file.empty()) {
-    settings_file = job.sequence / "settings.yaml";
-    if (!fs::exists(settings_file))
+    settings_file = default_settings(job.sequence);
+    if (settings_file.empty())
       throw InputError(job.sequence.string(), "no calibration: give --settings (see data/settings/)");
+    if (settings_file != job.sequence / "settings.yaml")
+      spdlog::info("settings: {} (shipped for this dataset; --settings to give others)", settings_file.string());
   }
   const slam::io::Settings settings = slam::io::load_settings(settings_file);
   slam::FrontOptions options = slam::load_front_options(settings);

@@ -97,6 +97,10 @@ void add_run_command(CLI::App& app) {
                 "sequence time since the last keyframe (mapping.sequence_time_for_mapper)")
       ->excludes("--deterministic");
   add_semantic_options(cmd, a->job);
+  cmd->get_option("--settings")
+      ->description("Settings YAML: camera (ORB-SLAM3 keys) and the tracking/mapping/semantics/detection sections.\n"
+                    "A SLAM run (--poses slam) without it reads the sequence's settings.yaml, else the shipped\n"
+                    "data/settings/ file for its dataset (KITTI by image width, 7-Scenes, EuRoC, TUM fr1/fr2/fr3)");
   cmd->callback([a] { run(*a); });
 }
 

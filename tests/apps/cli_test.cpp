@@ -103,6 +103,34 @@ TEST(CliBadInput, MissingCalibration) {
                         "settings.yaml: missing key 'Camera1.fx'");
 }
 
+// A SLAM run without --settings on a dataset the project ships settings for uses them (KITTI 03's
+// by its 1242-pixel width) and names them; where none fits (64x48 7-Scenes frames against the
+// shipped 640x480 file) the error names the file and the mismatch.
+TEST(CliPipeline, RunWithoutSettingsUsesTheShippedOnesForItsDataset) {
+  const fs::path root = scratch_dir();
+  const auto seq = root / "kitti" / "sequences" / "03";
+  for (int i = 0; i < 3; ++i) {
+    char n[16];
+    std::snprintf(n, sizeof n, "%06d.png", i);
+    write_image(seq / "image_0" / n, 20 + i, 1242, 375, CV_8UC1);
+  }
+  write_text(seq / "times.txt", "0.0\n0.1\n0.2\n");
+  const CliResult r = wardmap_cli("run " + shq(root / "kitti") + " --deterministic --out " + shq(root / "run"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("KITTI03.yaml (shipped for this dataset"), std::string::npos) << r.output;
+  std::ifstream in(root / "run" / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  const fs::path used = report.at("settings").get<std::string>();
+  EXPECT_EQ(used.filename(), "KITTI03.yaml");
+  EXPECT_EQ(used.parent_path().filename(), "settings");
+  EXPECT_EQ(report.at("mode").get<std::string>(), "mono");
+
+  make_seven_scenes(root / "7scenes");
+  expect_one_line_error(wardmap_cli("-q run " + shq(root / "7scenes") + " --out " + shq(root / "run7")),
+                        "7Scenes.yaml: calibration is for 640x480 images, the sequence's are 64x48");
+  EXPECT_FALSE(fs::exists(root / "run7"));
+}
+
 TEST(CliBadInput, WrongCalibrationSize) {
   const fs::path root = scratch_dir();
   make_seven_scenes(root);
