@@ -23,17 +23,18 @@ int best_class(const float* scores, int n) { return static_cast<int>(std::max_el
 
 }  // namespace
 
-std::vector<Candidate> decode_yolox(const cv::Mat& output, const ModelDescription& model, float min_score) {
+std::vector<Candidate> decode_yolox(const cv::Mat& output, const ModelDescription& model, const cv::Size& canvas,
+                                    float min_score) {
   const int num_classes = static_cast<int>(model.classes.size());
   const int row_size = 5 + num_classes;
   int total = 0;
-  for (int s : model.output.strides) total += (model.input.width / s) * (model.input.height / s);
+  for (int s : model.output.strides) total += (canvas.width / s) * (canvas.height / s);
   check_shape(output, total, row_size, model.output.names.front());
 
   std::vector<Candidate> out;
   const float* row = output.ptr<float>();
   for (int s : model.output.strides) {
-    const int gw = model.input.width / s, gh = model.input.height / s;
+    const int gw = canvas.width / s, gh = canvas.height / s;
     for (int gy = 0; gy < gh; ++gy) {
       for (int gx = 0; gx < gw; ++gx, row += row_size) {
         const float objectness = row[4];
@@ -51,14 +52,14 @@ std::vector<Candidate> decode_yolox(const cv::Mat& output, const ModelDescriptio
 }
 
 std::vector<Candidate> decode_nanodet(const std::vector<cv::Mat>& class_maps, const std::vector<cv::Mat>& box_maps,
-                                      const ModelDescription& model, float min_score) {
+                                      const ModelDescription& model, const cv::Size& canvas, float min_score) {
   const int num_classes = static_cast<int>(model.classes.size());
   const int bins = model.output.bins;
   std::vector<Candidate> out;
   std::vector<double> soft(bins);
   for (size_t level = 0; level < model.output.strides.size(); ++level) {
     const int s = model.output.strides[level];
-    const int gw = (model.input.width + s - 1) / s, gh = (model.input.height + s - 1) / s;
+    const int gw = (canvas.width + s - 1) / s, gh = (canvas.height + s - 1) / s;
     check_shape(class_maps[level], gw * gh, num_classes, model.output.names[level]);
     check_shape(box_maps[level], gw * gh, 4 * bins, model.output.box_names[level]);
     const float* cls = class_maps[level].ptr<float>();

@@ -16,13 +16,14 @@ struct Candidate {
 
 // YOLOX: rows [tx, ty, tw, th, obj, classes...] over strides in order, x fastest within a stride;
 // cx = (tx + gx) s, cy = (ty + gy) s, w = exp(tw) s, h = exp(th) s, score = obj * max(cls).
-// Keeps candidates with score >= min_score.
-std::vector<Candidate> decode_yolox(const cv::Mat& output, const ModelDescription& model, float min_score);
+// Keeps candidates with score >= min_score. `canvas`: the network input's W x H (Letterbox::canvas).
+std::vector<Candidate> decode_yolox(const cv::Mat& output, const ModelDescription& model, const cv::Size& canvas,
+                                    float min_score);
 
 // NanoDet (GFL head): per stride a class map (N x C, sigmoided) and a distance map (N x 4 * bins);
 // each side is the expectation of a softmax over bins, times the stride, measured from the centre
 // ((x + 0.5) s, (y + 0.5) s); sides in the order left, top, right, bottom.
 std::vector<Candidate> decode_nanodet(const std::vector<cv::Mat>& class_maps, const std::vector<cv::Mat>& box_maps,
-                                      const ModelDescription& model, float min_score);
+                                      const ModelDescription& model, const cv::Size& canvas, float min_score);
 
 }  // namespace wardmap::semantics

@@ -47,12 +47,12 @@ std::vector<Detection> DnnDetector::detect(const cv::Mat& image, double /*timest
   const float min_score = options_.score_threshold;
   std::vector<Candidate> candidates;
   if (model_.decoder == "yolox") {
-    candidates = decode_yolox(outputs.front(), model_, min_score);
+    candidates = decode_yolox(outputs.front(), model_, lb.canvas, min_score);
   } else {
     const size_t levels = model_.output.strides.size();
     const std::vector<cv::Mat> cls(outputs.begin(), outputs.begin() + levels);
     const std::vector<cv::Mat> dis(outputs.begin() + levels, outputs.end());
-    candidates = decode_nanodet(cls, dis, model_, min_score);
+    candidates = decode_nanodet(cls, dis, model_, lb.canvas, min_score);
   }
 
   // Map to landmark classes first and suppress per landmark class: one vehicle often scores as both

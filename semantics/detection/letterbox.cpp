@@ -30,6 +30,16 @@ cv::Mat to_bgr8(const cv::Mat& image) {
   }
 }
 
+cv::Size letterbox_canvas(const cv::Size& resized, const InputSpec& spec) {
+  const int m = spec.canvas_multiple;
+  if (m <= 0) return {spec.width, spec.height};
+  // At least m pixels of padding stay after the image: the network then sees where the image ends
+  // as on the full canvas (without them boxes that reach the image's bottom, such as tables, were
+  // regressed past it and all clipped to the border).
+  const auto fit = [m](int side, int limit) { return side >= limit ? limit : std::min(limit, (side + 2 * m - 1) / m * m); };
+  return {fit(resized.width, spec.width), fit(resized.height, spec.height)};
+}
+
 Letterbox make_letterbox(const cv::Mat& bgr, const InputSpec& spec) {
   Letterbox lb;
   lb.scale = std::min(static_cast<double>(spec.width) / bgr.cols, static_cast<double>(spec.height) / bgr.rows);
@@ -51,7 +61,8 @@ Letterbox make_letterbox(const cv::Mat& bgr, const InputSpec& spec) {
   if (!spec.pad_after_normalisation) {  // the pad is a pixel value: normalise it like the pixels
     for (int c = 0; c < 3; ++c) pad[c] = (spec.pad_value - spec.mean[c]) / spec.std[c];
   }
-  cv::Mat canvas(spec.height, spec.width, CV_32FC3, pad);
+  lb.canvas = letterbox_canvas({w, h}, spec);
+  cv::Mat canvas(lb.canvas, CV_32FC3, pad);
   normalised.copyTo(canvas(cv::Rect(0, 0, w, h)));
   lb.blob = cv::dnn::blobFromImage(canvas);  // HWC -> NCHW, no scaling, no swap
   return lb;

@@ -110,8 +110,16 @@ void read_input(const YAML::Node& root, const fs::path& file, InputSpec& in) {
   in.std = triple(n, "input", "std", file, in.std, true);
   detail::yaml_read_optional(n, "input", "pad_value", in.pad_value, file, "a number");
   detail::yaml_read_optional(n, "input", "pad_after_normalisation", in.pad_after_normalisation, file, "true or false");
+  detail::yaml_read_optional(n, "input", "canvas_multiple", in.canvas_multiple, file, "an integer");
+  if (in.canvas_multiple < 0 || in.canvas_multiple > std::min(in.width, in.height))
+    throw InputError(file.string(),
+                     "key 'input.canvas_multiple': must be 0 (a fixed canvas) or in [1, " +
+                         std::to_string(std::min(in.width, in.height)) + "], got " + std::to_string(in.canvas_multiple),
+                     yaml_line(n["canvas_multiple"]));
   reject_unknown_keys(n, "input",
-                      {"width", "height", "channel_order", "mean", "std", "pad_value", "pad_after_normalisation"}, file);
+                      {"width", "height", "channel_order", "mean", "std", "pad_value", "pad_after_normalisation",
+                       "canvas_multiple"},
+                      file);
 }
 
 void read_output(const YAML::Node& root, const std::string& decoder, const fs::path& file, OutputSpec& out) {
@@ -207,6 +215,12 @@ ModelDescription load_model_description(const fs::path& yaml_file, const fs::pat
                      yaml_line(decoder));
   read_input(root, yaml_file, d.input);
   read_output(root, d.decoder, yaml_file, d.output);
+  for (int s : d.output.strides)
+    if (d.input.canvas_multiple > 0 && d.input.canvas_multiple % s != 0)
+      throw InputError(yaml_file.string(),
+                       "key 'input.canvas_multiple': " + std::to_string(d.input.canvas_multiple) +
+                           " is not a multiple of the output stride " + std::to_string(s),
+                       yaml_line(root["input"]["canvas_multiple"]));
 
   const YAML::Node classes = yaml_required(root, "", "classes", yaml_file);
   const fs::path class_file = yaml_as<std::string>(classes, "classes", yaml_file, "a file name");

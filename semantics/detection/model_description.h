@@ -21,6 +21,12 @@ struct InputSpec {
   std::array<double, 3> std{1, 1, 1};
   double pad_value = 0;
   bool pad_after_normalisation = false;  // pad_value is in normalised units (NanoDet: 0 after normalising)
+  // 0: the canvas is always width x height. N > 0: a side of the canvas that the resized image does
+  // not fill is cut to the smallest multiple of N that holds it and N pixels of padding (640x480
+  // into 416x416 with N = 32: a 416x352 canvas; KITTI's 1241x376: 416x160), for a fully
+  // convolutional network that takes other input sizes: less padding to compute. N must be a
+  // multiple of every output stride.
+  int canvas_multiple = 0;
 };
 
 struct OutputSpec {

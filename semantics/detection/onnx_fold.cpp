@@ -113,10 +113,11 @@ std::string tensor_value_info(const std::string& name, std::int64_t elem_type, c
 
 cv::Mat SpaceToDepth::apply(const cv::Mat& blob) const {
   if (blob.dims != 4 || blob.type() != CV_32F || blob.size[0] != batch || blob.size[1] != channels ||
-      blob.size[2] != height || blob.size[3] != width)
+      blob.size[2] % 2 != 0 || blob.size[3] % 2 != 0)
     throw std::invalid_argument("SpaceToDepth: expected a float blob of " + std::to_string(batch) + " x " +
-                                std::to_string(channels) + " x " + std::to_string(height) + " x " +
-                                std::to_string(width));
+                                std::to_string(channels) + " x H x W, H and W even (the model's: " +
+                                std::to_string(height) + " x " + std::to_string(width) + ")");
+  const int height = blob.size[2], width = blob.size[3];
   const cv::Mat in = blob.isContinuous() ? blob : blob.clone();
   const int blocks = static_cast<int>(offsets.size());
   const int oh = height / 2, ow = width / 2;

@@ -20,8 +20,9 @@ struct SpaceToDepth {
   int batch = 0, channels = 0, height = 0, width = 0;  // the original input, N x C x H x W
   std::vector<std::array<int, 2>> offsets;
 
-  // N x C x H x W float -> N x (4C) x (H/2) x (W/2). Throws std::invalid_argument when the blob's
-  // shape is not the one the model was folded for.
+  // N x C x H x W float -> N x (4C) x (H/2) x (W/2). H and W: the model's own or any other even
+  // size (a smaller letterbox canvas). Throws std::invalid_argument for another batch or channel
+  // count, or an odd side.
   cv::Mat apply(const cv::Mat& blob) const;
 };
 

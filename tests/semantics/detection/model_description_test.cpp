@@ -94,6 +94,13 @@ TEST(ModelDescription, ErrorsNameTheKey) {
   EXPECT_NE(error_of_description("  pad_value: 0", "  pad_valeu: 0")
                 .find(":12: key 'input.pad_valeu': not a key of section 'input' (did you mean 'input.pad_value'?)"),
             std::string::npos);
+  EXPECT_NE(error_of_description("  pad_value: 0", "  pad_value: 0\n  canvas_multiple: 24")
+                .find("key 'input.canvas_multiple': 24 is not a multiple of the output stride 16"),
+            std::string::npos);
+  EXPECT_NE(error_of_description("  pad_value: 0", "  pad_value: 0\n  canvas_multiple: -32")
+                .find("key 'input.canvas_multiple': must be 0 (a fixed canvas) or in [1, 320], got -32"),
+            std::string::npos);
+  EXPECT_EQ(error_of_description("  pad_value: 0", "  pad_value: 0\n  canvas_multiple: 32"), "(no error)");
   EXPECT_NE(error_of_description("  bins: 8", "  bins: 8\n  bin: 8").find("key 'output.bin': not a key of section"),
             std::string::npos);
   EXPECT_NE(error_of_description("decoder: nanodet", "decoder: nanodet\ndecodr: yolox")
@@ -239,6 +246,35 @@ TEST(Letterbox, TopLeftWithPadding) {
   auto at_n = [&](int c, int y, int x) { return n.blob.ptr<float>(0, c)[y * 416 + x]; };
   EXPECT_FLOAT_EQ(at_n(0, 10, 10), (30 - 100) / 2.0f);  // R first after the swap
   EXPECT_FLOAT_EQ(at_n(0, 300, 10), 0);
+}
+
+// canvas_multiple: the side the image leaves partly empty is cut to the smallest multiple holding it
+// and that many pixels of padding.
+TEST(Letterbox, CanvasCutToTheImage) {
+  InputSpec spec;
+  spec.width = 416;
+  spec.height = 416;
+  spec.pad_value = 114;
+  spec.canvas_multiple = 32;
+  EXPECT_EQ(letterbox_canvas({416, 312}, spec), cv::Size(416, 352));  // 640x480
+  EXPECT_EQ(letterbox_canvas({416, 126}, spec), cv::Size(416, 160));  // KITTI 1241x376
+  EXPECT_EQ(letterbox_canvas({312, 416}, spec), cv::Size(352, 416));  // portrait
+  EXPECT_EQ(letterbox_canvas({416, 384}, spec), cv::Size(416, 416));  // no smaller multiple holds 32 more
+  EXPECT_EQ(letterbox_canvas({416, 416}, spec), cv::Size(416, 416));
+  spec.canvas_multiple = 0;
+  EXPECT_EQ(letterbox_canvas({416, 126}, spec), cv::Size(416, 416));
+
+  spec.canvas_multiple = 32;
+  const cv::Mat image(480, 640, CV_8UC3, cv::Scalar(10, 20, 30));
+  const Letterbox lb = make_letterbox(image, spec);
+  EXPECT_EQ(lb.canvas, cv::Size(416, 352));
+  ASSERT_EQ(lb.blob.size[2], 352);
+  ASSERT_EQ(lb.blob.size[3], 416);
+  EXPECT_DOUBLE_EQ(lb.scale, 0.65);
+  auto at = [&](int c, int y, int x) { return lb.blob.ptr<float>(0, c)[y * 416 + x]; };
+  EXPECT_FLOAT_EQ(at(0, 311, 415), 10);   // the image's last row
+  EXPECT_FLOAT_EQ(at(0, 312, 0), 114);    // the 40 rows of padding below it
+  EXPECT_FLOAT_EQ(at(2, 351, 415), 114);
 }
 
 TEST(ClassWiseNms, SuppressesWithinAGroupOnly) {

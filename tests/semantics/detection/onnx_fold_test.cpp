@@ -131,8 +131,18 @@ TEST(OnnxFold, FocusStageIsFoldedAndTheOutputIsUnchanged) {
   // A hand check: channel 3 (bottom-left block, channel 0) at (0, 1) is x[0][1][2].
   EXPECT_EQ(rearranged.ptr<float>()[3 * 2 * 3 + 1], blob.ptr<float>()[1 * 6 + 2]);
 
-  const int wrong[4] = {1, 3, 4, 8};
-  EXPECT_THROW(folded->input.apply(cv::Mat(4, wrong, CV_32F)), std::invalid_argument);
+  // Another even size (a smaller letterbox canvas) is rearranged the same way; odd sides and other
+  // channel counts are refused.
+  const int other[4] = {1, 3, 2, 8};
+  cv::Mat small(4, other, CV_32F);
+  cv::randu(small, 0.0, 255.0);
+  const cv::Mat small_out = folded->input.apply(small);
+  ASSERT_EQ(small_out.size[2], 1);
+  ASSERT_EQ(small_out.size[3], 4);
+  EXPECT_EQ(small_out.ptr<float>()[3 * 1 * 4 + 2], small.ptr<float>()[1 * 8 + 4]);  // block 1 (row phase 1), x = 2
+  const int odd[4] = {1, 3, 4, 7}, channels[4] = {1, 4, 4, 6};
+  EXPECT_THROW(folded->input.apply(cv::Mat(4, odd, CV_32F)), std::invalid_argument);
+  EXPECT_THROW(folded->input.apply(cv::Mat(4, channels, CV_32F)), std::invalid_argument);
 }
 
 TEST(OnnxFold, OtherGraphsAreLeftAlone) {
@@ -161,15 +171,23 @@ TEST(OnnxFold, YoloxNanoFoldedGivesTheSameOutput) {
   EXPECT_EQ(fold->offsets, yolox_order);
   cv::dnn::Net original = load_onnx_net(file, "missing");
 
-  const ModelDescription model = load_model_description(model_descriptions_dir() / "yolox-nano.yaml");
+  ModelDescription model = load_model_description(model_descriptions_dir() / "yolox-nano.yaml");
   const cv::Mat image = cv::imread((wardmap::test::shared_data_dir() / "images" / "bus.jpg").string());
   ASSERT_FALSE(image.empty());
-  const Letterbox lb = make_letterbox(image, model.input);
-  original.setInput(lb.blob);
-  folded.setInput(fold->apply(lb.blob));
-  const cv::Mat a = original.forward().clone(), b = folded.forward().clone();
-  ASSERT_EQ(a.total(), b.total());
-  EXPECT_LE(cv::norm(a.reshape(1, 1), b.reshape(1, 1), cv::NORM_INF), 1e-4);
+  // The full 416x416 canvas and the one cut to the image (810x1080: 352x416), as shipped.
+  ASSERT_EQ(model.input.canvas_multiple, 32);
+  for (int multiple : {0, 32}) {
+    model.input.canvas_multiple = multiple;
+    const Letterbox lb = make_letterbox(image, model.input);
+    EXPECT_EQ(lb.canvas, multiple ? cv::Size(352, 416) : cv::Size(416, 416));
+    original.setInput(lb.blob);
+    folded.setInput(fold->apply(lb.blob));
+    const cv::Mat a = original.forward().clone(), b = folded.forward().clone();
+    ASSERT_EQ(a.total(), b.total());
+    EXPECT_EQ(a.size[1], (lb.canvas.width / 8) * (lb.canvas.height / 8) + (lb.canvas.width / 16) * (lb.canvas.height / 16) +
+                             (lb.canvas.width / 32) * (lb.canvas.height / 32));
+    EXPECT_LE(cv::norm(a.reshape(1, 1), b.reshape(1, 1), cv::NORM_INF), 1e-4);
+  }
 }
 
 }  // namespace
