@@ -1,6 +1,8 @@
 // Latency of the network back-ends on one real photo (bus.jpg, 810x1080): YOLOX-nano and NanoDet-m
-// per frame (letterbox + forward + decode + NMS), OSNet x0.25 per crop. Skipped when
-// ../shared/models or ../shared/data/images is missing. OpenCV's default thread count.
+// per frame (letterbox + forward + decode + NMS), OSNet x0.25 per crop; YOLOX-nano also on a
+// 7-Scenes frame (640x480) and a KITTI 03 frame (1241x376), whose letterbox canvases are cut to
+// 416x352 and 416x160 (input.canvas_multiple). Skipped when ../shared/models or the images are
+// missing. OpenCV's default thread count.
 #include <benchmark/benchmark.h>
 
 #include <memory>
@@ -16,9 +18,9 @@ namespace {
 
 cv::Mat bus_photo() { return cv::imread((data_dir() / "images" / "bus.jpg").string(), cv::IMREAD_COLOR); }
 
-void run_detector(benchmark::State& state, const char* kind) {
-  const cv::Mat image = bus_photo();
-  if (image.empty()) return state.SkipWithError("../shared/data/images/bus.jpg not found");
+void run_detector(benchmark::State& state, const char* kind, const std::string& image_file = "images/bus.jpg") {
+  const cv::Mat image = cv::imread((data_dir() / image_file).string(), cv::IMREAD_COLOR);
+  if (image.empty()) return state.SkipWithError(("../shared/data/" + image_file + " not found").c_str());
   std::unique_ptr<semantics::Detector> detector;
   try {
     semantics::DetectorOptions options;
@@ -31,13 +33,18 @@ void run_detector(benchmark::State& state, const char* kind) {
   detector->detect(image, 0.0);  // warm-up: first forward allocates
   size_t detections = 0;
   for (auto _ : state) detections = detector->detect(image, 0.0).size();
-  state.SetLabel(detector->name() + ", 810x1080, " + std::to_string(detections) + " detections");
+  state.SetLabel(detector->name() + ", " + std::to_string(image.cols) + "x" + std::to_string(image.rows) + ", " +
+                 std::to_string(detections) + " detections");
 }
 
 void BM_DetectYoloxNano(benchmark::State& s) { run_detector(s, "yolox"); }
 void BM_DetectNanodetM(benchmark::State& s) { run_detector(s, "nanodet"); }
 BENCHMARK(BM_DetectYoloxNano)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_DetectNanodetM)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+void BM_DetectYoloxNano7Scenes(benchmark::State& s) { run_detector(s, "yolox", "7scenes-redkitchen/frame-000000.color.jpg"); }
+void BM_DetectYoloxNanoKitti(benchmark::State& s) { run_detector(s, "yolox", "kitti-odometry-03/sequences/03/image_0/000000.png"); }
+BENCHMARK(BM_DetectYoloxNano7Scenes)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_DetectYoloxNanoKitti)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 void BM_EmbedOsnetCrop(benchmark::State& state) {
   const cv::Mat image = bus_photo();
