@@ -36,7 +36,9 @@ cv::Size letterbox_canvas(const cv::Size& resized, const InputSpec& spec) {
   // At least m pixels of padding stay after the image: the network then sees where the image ends
   // as on the full canvas (without them boxes that reach the image's bottom, such as tables, were
   // regressed past it and all clipped to the border).
-  const auto fit = [m](int side, int limit) { return side >= limit ? limit : std::min(limit, (side + 2 * m - 1) / m * m); };
+  const auto fit = [m](int side, int limit) {
+    return side >= limit ? limit : std::min(limit, (side + 2 * m - 1) / m * m);
+  };
   return {fit(resized.width, spec.width), fit(resized.height, spec.height)};
 }
 

@@ -117,10 +117,10 @@ cv::Mat SpaceToDepth::apply(const cv::Mat& blob) const {
     throw std::invalid_argument("SpaceToDepth: expected a float blob of " + std::to_string(batch) + " x " +
                                 std::to_string(channels) + " x H x W, H and W even (the model's: " +
                                 std::to_string(height) + " x " + std::to_string(width) + ")");
-  const int height = blob.size[2], width = blob.size[3];
+  const int h = blob.size[2], w = blob.size[3];  // the blob's own: any even size
   const cv::Mat in = blob.isContinuous() ? blob : blob.clone();
   const int blocks = static_cast<int>(offsets.size());
-  const int oh = height / 2, ow = width / 2;
+  const int oh = h / 2, ow = w / 2;
   const int dims[4] = {batch, channels * blocks, oh, ow};
   cv::Mat out(4, dims, CV_32F);
   const float* src = in.ptr<float>();
@@ -128,10 +128,10 @@ cv::Mat SpaceToDepth::apply(const cv::Mat& blob) const {
   for (int n = 0; n < batch; ++n)
     for (int k = 0; k < blocks; ++k)
       for (int c = 0; c < channels; ++c) {
-        const float* plane = src + (static_cast<size_t>(n) * channels + c) * height * width;
+        const float* plane = src + (static_cast<size_t>(n) * channels + c) * h * w;
         float* o = dst + ((static_cast<size_t>(n) * blocks + k) * channels + c) * oh * ow;
         for (int y = 0; y < oh; ++y) {
-          const float* row = plane + static_cast<size_t>(2 * y + offsets[k][0]) * width + offsets[k][1];
+          const float* row = plane + static_cast<size_t>(2 * y + offsets[k][0]) * w + offsets[k][1];
           for (int x = 0; x < ow; ++x) *o++ = row[2 * x];
         }
       }
