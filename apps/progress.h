@@ -1,4 +1,5 @@
-// A progress bar on stderr for long runs (only when stderr is a terminal or when asked).
+// Progress of long runs on stderr: a bar redrawn in place when stderr is a terminal, else (a log
+// file, a pipe, CI) one log line every 10 s, so that a batch run shows it is alive and how far it is.
 #pragma once
 
 #include <chrono>
@@ -16,7 +17,8 @@ class Progress {
  private:
   std::string what_;
   size_t total_;
-  bool enabled_;
+  bool bar_;  // a terminal: the bar
+  bool log_;  // not a terminal: a log line now and then
   std::chrono::steady_clock::time_point start_, last_;
 };
 
