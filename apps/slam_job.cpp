@@ -70,6 +70,10 @@ fs::path default_settings(const fs::path& sequence) {
 }
 
 double run_slam_job(const SlamJob& job) {
+  // A first Ctrl-C (or SIGTERM) while the run loads or tracks stops it after the frame in hand, and
+  // the run folder is written for the frames so far; a second one quits at once. After tracking the
+  // signals have their default action again (outputs are written whole or not at all).
+  std::optional<InterruptScope> interrupt_scope(std::in_place);
   // Before looking for its calibration: a mistyped path should be reported as such.
   if (!fs::exists(job.sequence)) throw InputError(job.sequence.string(), "sequence not found (no such file or folder)");
   fs::path settings_file = job.settings;
@@ -131,10 +135,6 @@ double run_slam_job(const SlamJob& job) {
   // --deterministic tracks and maps on this thread: the next frames are decoded on the idle core. A
   // threaded run's tracker and mapper keep both cores busy, and it reads here.
   FramePrefetcher frames(*reader, job.deterministic ? 2 : 0);
-  // A first Ctrl-C (or SIGTERM) while frames are tracked stops after the frame in hand, and the
-  // run folder is written for the frames so far; a second one quits at once. After tracking the
-  // signals have their default action again (outputs are written whole or not at all).
-  std::optional<InterruptScope> interrupt_scope(std::in_place);
   int interrupted = 0;
   size_t processed = 0;
   for (size_t i = 0; i < reader->size(); ++i) {
