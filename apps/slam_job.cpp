@@ -41,6 +41,14 @@ double percentile(std::vector<double> v, double q) {
   return v[static_cast<size_t>(q * (v.size() - 1))];
 }
 
+// A file the project ships under data/: from the source tree the binary was built from, else from
+// the working directory; empty when neither has it.
+fs::path find_shipped(const fs::path& relative) {
+  for (const fs::path& dir : {fs::path(WARDMAP_SOURCE_DIR) / "data", fs::path("data")})
+    if (fs::exists(dir / relative)) return dir / relative;
+  return {};
+}
+
 }  // namespace
 
 fs::path find_vocabulary(const fs::path& given) {
@@ -52,21 +60,13 @@ fs::path find_vocabulary(const fs::path& given) {
     if (!fs::exists(env)) throw InputError(env, "vocabulary file (WARDMAP_VOCABULARY) not found");
     return env;
   }
-  for (const fs::path& p : {fs::path(WARDMAP_SOURCE_DIR) / "data/vocabulary/orb-k10l4.bin",
-                            fs::path("data/vocabulary/orb-k10l4.bin")})
-    if (fs::exists(p)) return p;
-  return {};
+  return find_shipped("vocabulary/orb-k10l4.bin");
 }
 
-fs::path default_settings(const fs::path& sequence) {
-  if (fs::exists(sequence / "settings.yaml")) return sequence / "settings.yaml";
-  const auto reader = slam::io::open_sequence(sequence);
-  const auto& in = reader->info();
-  const std::string name = slam::io::suggest_settings_name(slam::io::to_string(in.kind), in.root, in.width);
-  if (name.empty()) return {};
-  for (const fs::path& dir : {fs::path(WARDMAP_SOURCE_DIR) / "data/settings", fs::path("data/settings")})
-    if (fs::exists(dir / name)) return dir / name;
-  return {};
+fs::path default_settings(const slam::io::SequenceInfo& info) {
+  if (fs::exists(info.root / "settings.yaml")) return info.root / "settings.yaml";
+  const std::string name = slam::io::suggest_settings_name(slam::io::to_string(info.kind), info.root, info.width);
+  return name.empty() ? fs::path() : find_shipped(fs::path("settings") / name);
 }
 
 double run_slam_job(const SlamJob& job) {
@@ -76,20 +76,19 @@ double run_slam_job(const SlamJob& job) {
   std::optional<InterruptScope> interrupt_scope(std::in_place);
   // Before looking for its calibration: a mistyped path should be reported as such.
   if (!fs::exists(job.sequence)) throw InputError(job.sequence.string(), "sequence not found (no such file or folder)");
+  auto reader = slam::io::open_sequence(job.sequence);
+  const auto& info = reader->info();
   fs::path settings_file = job.settings;
   if (settings_file.empty()) {
-    settings_file = default_settings(job.sequence);
+    settings_file = default_settings(info);
     if (settings_file.empty())
       throw InputError(job.sequence.string(), "no calibration: give --settings (see data/settings/)");
-    if (settings_file != job.sequence / "settings.yaml")
+    if (settings_file != info.root / "settings.yaml")
       spdlog::info("settings: {} (shipped for this dataset; --settings to give others)", settings_file.string());
   }
   const slam::io::Settings settings = slam::io::load_settings(settings_file);
   slam::FrontOptions options = slam::load_front_options(settings);
-  slam::io::ReaderOptions ro;
-  ro.depth_factor = settings.camera.depth_map_factor;
-  auto reader = slam::io::open_sequence(job.sequence, ro);
-  const auto& info = reader->info();
+  if (settings.camera.depth_map_factor) reader->set_depth_factor(*settings.camera.depth_map_factor);
   const std::string mode = job.mode.empty() ? (info.has_depth ? "rgbd" : "mono") : job.mode;
   if (mode == "rgbd" && !info.has_depth)
     throw InputError(job.sequence.string(), "--mode rgbd needs depth images, and this sequence has none");
@@ -136,7 +135,6 @@ double run_slam_job(const SlamJob& job) {
   // threaded run's tracker and mapper keep both cores busy, and it reads here.
   FramePrefetcher frames(*reader, job.deterministic ? 2 : 0);
   int interrupted = 0;
-  size_t processed = 0;
   for (size_t i = 0; i < reader->size(); ++i) {
     if ((interrupted = InterruptScope::requested())) break;
     progress.update(i + 1);
@@ -167,8 +165,8 @@ double run_slam_job(const SlamJob& job) {
     timing_csv += line;
     seconds.push_back(r.seconds);
     wait_seconds += r.wait_seconds;
-    processed = i + 1;
   }
+  const size_t processed = stamps.size();
   progress.finish();
   if (interrupted)
     spdlog::warn("{}: stopped after frame {} of {}; writing the run folder for those frames{} (again to quit at once)",

@@ -6,12 +6,13 @@
 #include <string>
 
 #include "apps/semantic_job.h"
+#include "slam/io/sequence.h"
 
 namespace wardmap::apps {
 
 struct SlamJob {
   std::filesystem::path sequence;
-  std::filesystem::path settings;  // empty: default_settings(sequence)
+  std::filesystem::path settings;  // empty: default_settings(the sequence's info)
   std::filesystem::path out;
   std::string mode;  // "rgbd", "mono", or empty: rgbd when the sequence has depth, else mono
   bool progress = true;
@@ -31,7 +32,7 @@ std::filesystem::path find_vocabulary(const std::filesystem::path& given);
 // Settings for a run given no --settings: the sequence's own settings.yaml (wardmap synth writes one),
 // else the shipped data/settings/ file that fits its dataset (as `wardmap info` suggests: KITTI by
 // image width, 7-Scenes, EuRoC, TUM by freiburg1/2/3 in its name); empty when neither.
-std::filesystem::path default_settings(const std::filesystem::path& sequence);
+std::filesystem::path default_settings(const slam::io::SequenceInfo& info);
 
 // Returns the tracking rate (%) when the sequence has ground truth, else -1.
 double run_slam_job(const SlamJob& job);

@@ -69,6 +69,11 @@ class SequenceReader {
   // Whether read() decodes the depth images (default true). A monocular run does not use them, and
   // decoding a 16-bit PNG costs about as much as the colour image; Frame::depth is then empty.
   void set_decode_depth(bool decode) { decode_depth_ = decode; }
+  // Raw depth units per metre, overriding the dataset's default (as ReaderOptions::depth_factor does
+  // when the calibration is known before opening). Ignored when the sequence has no depth.
+  void set_depth_factor(double units_per_metre) {
+    if (info_.has_depth) info_.depth_factor = units_per_metre;
+  }
   // The ground-truth trajectory as the dataset gives it (may be denser than the frames).
   const Trajectory& ground_truth() const { return ground_truth_; }
   // Calibration found beside the dataset (a settings.yaml in its folder); the image size must match.
