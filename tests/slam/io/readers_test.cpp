@@ -45,6 +45,19 @@ TEST(TumReader, SkipsDepthWhenNotDecoding) {
   EXPECT_FLOAT_EQ(r->read(2).depth.at<float>(5, 5), 4.0f);
 }
 
+TEST(TumReader, DepthFactorFromTheCalibrationAfterOpening) {
+  const fs::path root = scratch_dir();
+  test::make_tum(root);
+  ReaderOptions o;
+  o.depth_factor = 1000;  // the calibration known before opening
+  EXPECT_FLOAT_EQ(open_sequence(root, o)->read(2).depth.at<float>(5, 5), 20.0f);
+  auto r = open_sequence(root);  // and after: wardmap run picks the settings from the sequence
+  EXPECT_DOUBLE_EQ(r->info().depth_factor, 5000);
+  r->set_depth_factor(1000);
+  EXPECT_DOUBLE_EQ(r->info().depth_factor, 1000);
+  EXPECT_FLOAT_EQ(r->read(2).depth.at<float>(5, 5), 20.0f);  // 20000 / 1000
+}
+
 TEST(KittiReader, ReadsTimesCalibrationAndPoses) {
   const fs::path root = scratch_dir();
   test::make_kitti(root);
