@@ -18,14 +18,15 @@ namespace {
 
 cv::Mat bus_photo() { return cv::imread((data_dir() / "images" / "bus.jpg").string(), cv::IMREAD_COLOR); }
 
-void run_detector(benchmark::State& state, const char* kind, const std::string& image_file = "images/bus.jpg") {
+void run_detector(benchmark::State& state, const char* kind, const std::string& image_file = "images/bus.jpg",
+                  const char* landmark_set = "road") {
   const cv::Mat image = cv::imread((data_dir() / image_file).string(), cv::IMREAD_COLOR);
   if (image.empty()) return state.SkipWithError(("../shared/data/" + image_file + " not found").c_str());
   std::unique_ptr<semantics::Detector> detector;
   try {
     semantics::DetectorOptions options;
     options.kind = kind;
-    options.landmark_set = "road";
+    options.landmark_set = landmark_set;
     detector = semantics::make_detector(options);
   } catch (const std::exception& e) {
     return state.SkipWithError(e.what());
@@ -41,7 +42,7 @@ void BM_DetectYoloxNano(benchmark::State& s) { run_detector(s, "yolox"); }
 void BM_DetectNanodetM(benchmark::State& s) { run_detector(s, "nanodet"); }
 BENCHMARK(BM_DetectYoloxNano)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_DetectNanodetM)->Unit(benchmark::kMillisecond)->MinTime(2.0);
-void BM_DetectYoloxNano7Scenes(benchmark::State& s) { run_detector(s, "yolox", "7scenes-redkitchen/frame-000000.color.jpg"); }
+void BM_DetectYoloxNano7Scenes(benchmark::State& s) { run_detector(s, "yolox", "7scenes-redkitchen/frame-000000.color.jpg", "indoor"); }
 void BM_DetectYoloxNanoKitti(benchmark::State& s) { run_detector(s, "yolox", "kitti-odometry-03/sequences/03/image_0/000000.png"); }
 BENCHMARK(BM_DetectYoloxNano7Scenes)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_DetectYoloxNanoKitti)->Unit(benchmark::kMillisecond)->MinTime(2.0);
