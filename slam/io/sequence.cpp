@@ -158,6 +158,7 @@ std::unique_ptr<SequenceReader> open_sequence(const fs::path& path, const Reader
   if (!fs::exists(path)) throw InputError(path.string(), "no such file or folder");
   const DatasetKind kind = options.kind ? *options.kind : detect_dataset_kind(path);
   std::unique_ptr<SequenceReader> reader = open_by_kind(kind, path, options);
+  if (options.depth_factor) reader->set_depth_factor(*options.depth_factor);
   // A settings file inside the sequence folder (wardmap synth writes one) is its calibration.
   const fs::path settings = fs::is_directory(path) ? path / "settings.yaml" : fs::path();
   if (!reader->info().calibration && !settings.empty() && fs::exists(settings)) {

@@ -69,8 +69,8 @@ class SequenceReader {
   // Whether read() decodes the depth images (default true). A monocular run does not use them, and
   // decoding a 16-bit PNG costs about as much as the colour image; Frame::depth is then empty.
   void set_decode_depth(bool decode) { decode_depth_ = decode; }
-  // Raw depth units per metre, overriding the dataset's default (as ReaderOptions::depth_factor does
-  // when the calibration is known before opening). Ignored when the sequence has no depth.
+  // Raw depth units per metre, overriding the dataset's default: ReaderOptions::depth_factor when the
+  // calibration is known before opening, or later. Ignored when the sequence has no depth.
   void set_depth_factor(double units_per_metre) {
     if (info_.has_depth) info_.depth_factor = units_per_metre;
   }

@@ -27,11 +27,11 @@ Eigen::Matrix4d read_matrix4(const fs::path& file) {
 
 class SevenScenesReader : public SequenceReader {
  public:
-  SevenScenesReader(const fs::path& root, const ReaderOptions& o) {
+  explicit SevenScenesReader(const fs::path& root) {
     info_.kind = DatasetKind::SevenScenes;
     info_.root = root;
     info_.fps = 30.0;
-    info_.depth_factor = o.depth_factor.value_or(1000.0);
+    info_.depth_factor = 1000.0;  // millimetres; ReaderOptions::depth_factor overrides it (open_sequence)
     char name[64];
     for (int n = 0;; ++n) {
       std::snprintf(name, sizeof name, "frame-%06d.", n);
@@ -76,8 +76,8 @@ class SevenScenesReader : public SequenceReader {
 
 }  // namespace
 
-std::unique_ptr<SequenceReader> open_seven_scenes(const fs::path& root, const ReaderOptions& o) {
-  return std::make_unique<SevenScenesReader>(root, o);
+std::unique_ptr<SequenceReader> open_seven_scenes(const fs::path& root, const ReaderOptions& /*options*/) {
+  return std::make_unique<SevenScenesReader>(root);
 }
 
 }  // namespace wardmap::slam::io

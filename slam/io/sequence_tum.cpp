@@ -40,7 +40,7 @@ class TumReader : public SequenceReader {
   TumReader(const fs::path& root, const ReaderOptions& o) {
     info_.kind = DatasetKind::TumRgbd;
     info_.root = root;
-    info_.depth_factor = o.depth_factor.value_or(5000.0);
+    info_.depth_factor = 5000.0;  // TUM RGB-D; ReaderOptions::depth_factor overrides it (open_sequence)
     info_.fps = 30.0;
     const auto rgb = read_index(root, "rgb.txt");
     std::vector<TimedPath> depth;
