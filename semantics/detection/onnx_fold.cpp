@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "semantics/detection/protobuf_wire.h"
+#include "semantics/detection/silu_layer.h"
 
 namespace wardmap::semantics {
 
@@ -16,7 +17,7 @@ namespace {
 constexpr std::uint32_t kModelGraph = 7;
 constexpr std::uint32_t kGraphNode = 1, kGraphInitializer = 5, kGraphInput = 11, kGraphOutput = 12,
                         kGraphValueInfo = 13;
-constexpr std::uint32_t kNodeInput = 1, kNodeOutput = 2, kNodeOpType = 4, kNodeAttribute = 5;
+constexpr std::uint32_t kNodeInput = 1, kNodeOutput = 2, kNodeName = 3, kNodeOpType = 4, kNodeAttribute = 5;
 constexpr std::uint32_t kValueInfoName = 1, kValueInfoType = 2;
 constexpr std::uint32_t kTypeTensorType = 1, kTensorTypeElemType = 1, kTensorTypeShape = 2, kShapeDim = 1,
                         kDimValue = 1;
@@ -109,6 +110,76 @@ std::string tensor_value_info(const std::string& name, std::int64_t elem_type, c
   return wire::serialize({wire::bytes_field(kValueInfoName, name), wire::bytes_field(kValueInfoType, type)});
 }
 
+// A model's graph, parsed: its fields, the nodes, the constant integers, the weights' names and the
+// graph outputs.
+struct ParsedGraph {
+  std::vector<wire::Field> model;
+  size_t graph_field = 0;  // the graph's index in `model`
+  std::vector<wire::Field> graph;
+  Constants constants;
+  std::set<std::string> initializers;
+  std::vector<Node> nodes;
+  std::set<std::string> graph_outputs;
+
+  // The model with `graph` written back.
+  std::string serialize_with(const std::vector<wire::Field>& rewritten) {
+    model[graph_field].bytes = wire::serialize(rewritten);
+    return wire::serialize(model);
+  }
+};
+
+// Nullopt when the model has no graph or more than one. Throws std::runtime_error for bytes that are
+// not a protobuf message.
+std::optional<ParsedGraph> parse_graph(const std::string& onnx) {
+  ParsedGraph p;
+  p.model = wire::parse(onnx);
+  int graphs = 0;
+  for (size_t i = 0; i < p.model.size(); ++i)
+    if (p.model[i].number == kModelGraph && p.model[i].type == wire::kLengthDelimited) p.graph_field = i, ++graphs;
+  if (graphs != 1) return std::nullopt;
+  p.graph = wire::parse(p.model[p.graph_field].bytes);
+  for (size_t i = 0; i < p.graph.size(); ++i) {
+    const wire::Field& f = p.graph[i];
+    if (f.type != wire::kLengthDelimited) continue;
+    if (f.number == kGraphInitializer) {
+      const std::string name = first_string(wire::parse(f.bytes), kTensorName);
+      p.initializers.insert(name);
+      if (auto values = tensor_integers(f.bytes)) p.constants[name] = std::move(*values);
+    } else if (f.number == kGraphOutput) {
+      p.graph_outputs.insert(first_string(wire::parse(f.bytes), kValueInfoName));
+    } else if (f.number == kGraphNode) {
+      const std::vector<wire::Field> n = wire::parse(f.bytes);
+      Node node;
+      node.field = i;
+      node.op = first_string(n, kNodeOpType);
+      node.inputs = wire::strings(n, kNodeInput);
+      node.outputs = wire::strings(n, kNodeOutput);
+      for (const std::string& a : wire::strings(n, kNodeAttribute)) node.attributes.push_back(wire::parse(a));
+      if (node.op == "Constant" && node.outputs.size() == 1) {
+        if (const auto* value = node.attribute("value")) {
+          const std::string tensor = first_string(*value, kAttributeTensor);
+          if (auto values = tensor_integers(tensor)) p.constants[node.outputs[0]] = std::move(*values);
+        }
+      }
+      p.nodes.push_back(std::move(node));
+    }
+  }
+  return p;
+}
+
+// True for a graph's value_info field that names one of `tensors` (a tensor a rewrite removed).
+bool is_value_info_of(const wire::Field& field, const std::set<std::string>& tensors) {
+  return field.number == kGraphValueInfo && field.type == wire::kLengthDelimited &&
+         tensors.count(first_string(wire::parse(field.bytes), kValueInfoName));
+}
+
+std::map<std::string, std::vector<size_t>> consumers_of(const std::vector<Node>& nodes) {
+  std::map<std::string, std::vector<size_t>> consumers;
+  for (size_t k = 0; k < nodes.size(); ++k)
+    for (const std::string& in : nodes[k].inputs) consumers[in].push_back(k);
+  return consumers;
+}
+
 }  // namespace
 
 cv::Mat SpaceToDepth::apply(const cv::Mat& blob) const {
@@ -139,46 +210,13 @@ cv::Mat SpaceToDepth::apply(const cv::Mat& blob) const {
 }
 
 std::optional<FoldedModel> fold_space_to_depth_input(const std::string& onnx) {
-  std::vector<wire::Field> model = wire::parse(onnx);
-  wire::Field* graph_field = nullptr;
-  for (wire::Field& f : model) {
-    if (f.number != kModelGraph || f.type != wire::kLengthDelimited) continue;
-    if (graph_field) return std::nullopt;
-    graph_field = &f;
-  }
-  if (!graph_field) return std::nullopt;
-  std::vector<wire::Field> graph = wire::parse(graph_field->bytes);
-
-  Constants constants;
-  std::set<std::string> initializers;
-  std::vector<Node> nodes;
-  std::set<std::string> graph_outputs;
-  for (size_t i = 0; i < graph.size(); ++i) {
-    const wire::Field& f = graph[i];
-    if (f.type != wire::kLengthDelimited) continue;
-    if (f.number == kGraphInitializer) {
-      const std::string name = first_string(wire::parse(f.bytes), kTensorName);
-      initializers.insert(name);
-      if (auto values = tensor_integers(f.bytes)) constants[name] = std::move(*values);
-    } else if (f.number == kGraphOutput) {
-      graph_outputs.insert(first_string(wire::parse(f.bytes), kValueInfoName));
-    } else if (f.number == kGraphNode) {
-      const std::vector<wire::Field> n = wire::parse(f.bytes);
-      Node node;
-      node.field = i;
-      node.op = first_string(n, kNodeOpType);
-      node.inputs = wire::strings(n, kNodeInput);
-      node.outputs = wire::strings(n, kNodeOutput);
-      for (const std::string& a : wire::strings(n, kNodeAttribute)) node.attributes.push_back(wire::parse(a));
-      if (node.op == "Constant" && node.outputs.size() == 1) {
-        if (const auto* value = node.attribute("value")) {
-          const std::string tensor = first_string(*value, kAttributeTensor);
-          if (auto values = tensor_integers(tensor)) constants[node.outputs[0]] = std::move(*values);
-        }
-      }
-      nodes.push_back(std::move(node));
-    }
-  }
+  std::optional<ParsedGraph> parsed = parse_graph(onnx);
+  if (!parsed) return std::nullopt;
+  std::vector<wire::Field>& graph = parsed->graph;
+  const std::set<std::string>& initializers = parsed->initializers;
+  const Constants& constants = parsed->constants;
+  const std::vector<Node>& nodes = parsed->nodes;
+  const std::set<std::string>& graph_outputs = parsed->graph_outputs;
 
   // The one input that is not a weight, with a fully known N x C x H x W shape, H and W even.
   size_t input_field = 0;
@@ -202,9 +240,7 @@ std::optional<FoldedModel> fold_space_to_depth_input(const std::string& onnx) {
   }
   if (elem_type.size() != 1 || dims.size() != 4 || dims[2] % 2 != 0 || dims[3] % 2 != 0) return std::nullopt;
 
-  std::map<std::string, std::vector<size_t>> consumers;
-  for (size_t k = 0; k < nodes.size(); ++k)
-    for (const std::string& in : nodes[k].inputs) consumers[in].push_back(k);
+  std::map<std::string, std::vector<size_t>> consumers = consumers_of(nodes);
 
   // Follow each chain of Slices from the input to the Concat, collecting its phases.
   std::set<size_t> removed;
@@ -259,9 +295,7 @@ std::optional<FoldedModel> fold_space_to_depth_input(const std::string& onnx) {
   std::vector<wire::Field> rewritten;
   for (size_t i = 0; i < graph.size(); ++i) {
     if (dropped_fields.count(i)) continue;
-    if (graph[i].number == kGraphValueInfo && graph[i].type == wire::kLengthDelimited &&
-        dropped_tensors.count(first_string(wire::parse(graph[i].bytes), kValueInfoName)))
-      continue;
+    if (is_value_info_of(graph[i], dropped_tensors)) continue;
     if (i == input_field) {
       rewritten.push_back(wire::bytes_field(
           kGraphInput,
@@ -270,8 +304,41 @@ std::optional<FoldedModel> fold_space_to_depth_input(const std::string& onnx) {
     }
     rewritten.push_back(std::move(graph[i]));
   }
-  graph_field->bytes = wire::serialize(rewritten);
-  return FoldedModel{wire::serialize(model), std::move(s2d)};
+  return FoldedModel{parsed->serialize_with(rewritten), std::move(s2d)};
+}
+
+std::optional<std::string> fuse_silu(const std::string& onnx) {
+  std::optional<ParsedGraph> parsed = parse_graph(onnx);
+  if (!parsed) return std::nullopt;
+  const std::vector<Node>& nodes = parsed->nodes;
+  const std::map<std::string, std::vector<size_t>> consumers = consumers_of(nodes);
+  std::map<size_t, std::string> replaced;  // Mul's graph field -> the fused node
+  std::set<size_t> dropped;                // Sigmoids' graph fields
+  std::set<std::string> dropped_tensors;   // their outputs
+  for (const Node& sigmoid : nodes) {
+    if (sigmoid.op != "Sigmoid" || sigmoid.inputs.size() != 1 || sigmoid.outputs.size() != 1) continue;
+    const std::string& x = sigmoid.inputs[0];
+    const std::string& s = sigmoid.outputs[0];
+    const auto users = consumers.find(s);
+    if (parsed->graph_outputs.count(s) || users == consumers.end() || users->second.size() != 1) continue;
+    const Node& mul = nodes[users->second.front()];
+    if (mul.op != "Mul" || mul.inputs.size() != 2 || mul.outputs.size() != 1) continue;
+    if (!((mul.inputs[0] == x && mul.inputs[1] == s) || (mul.inputs[0] == s && mul.inputs[1] == x))) continue;
+    dropped.insert(sigmoid.field);
+    dropped_tensors.insert(s);
+    replaced[mul.field] = wire::serialize({wire::bytes_field(kNodeInput, x), wire::bytes_field(kNodeOutput, mul.outputs[0]),
+                                           wire::bytes_field(kNodeName, "wardmap_silu_" + std::to_string(replaced.size())),
+                                           wire::bytes_field(kNodeOpType, kSiluOpType)});
+  }
+  if (replaced.empty()) return std::nullopt;
+  std::vector<wire::Field> rewritten;
+  for (size_t i = 0; i < parsed->graph.size(); ++i) {
+    if (dropped.count(i)) continue;
+    if (is_value_info_of(parsed->graph[i], dropped_tensors)) continue;
+    const auto fused = replaced.find(i);
+    rewritten.push_back(fused == replaced.end() ? std::move(parsed->graph[i]) : wire::bytes_field(kGraphNode, fused->second));
+  }
+  return parsed->serialize_with(rewritten);
 }
 
 }  // namespace wardmap::semantics

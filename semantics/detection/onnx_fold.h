@@ -3,6 +3,7 @@
 // instead of by cv::dnn. OpenCV 4.6 spends about 10 ms of YOLOX-nano's 50 ms at 416x416 in those
 // eight Slice layers (Net::getPerfProfile, 2 threads); the same rearrangement is a copy of the input.
 // The network itself is unchanged from the Concat on: its output is bit for bit the same.
+// Also SiLU (x * sigmoid(x)) fused into one node that silu_layer.h runs.
 #pragma once
 
 #include <array>
@@ -37,5 +38,12 @@ struct FoldedModel {
 // Returns nullopt for any other graph (the model is then used as it is). Throws std::runtime_error
 // when the bytes are not a protobuf message.
 std::optional<FoldedModel> fold_space_to_depth_input(const std::string& onnx);
+
+// `onnx`: the bytes of an ONNX ModelProto. Every Sigmoid whose output goes only to a Mul by the
+// Sigmoid's own input (SiLU, YOLOX's activation) becomes, with that Mul, one node of op type
+// kSiluOpType (silu_layer.h; register_silu_layer() before loading the result). Returns nullopt
+// when the model has no such pair. Throws std::runtime_error when the bytes are not a protobuf
+// message.
+std::optional<std::string> fuse_silu(const std::string& onnx);
 
 }  // namespace wardmap::semantics

@@ -6,6 +6,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "semantics/detection/silu_layer.h"
 #include "slam/core/errors.h"
 
 namespace wardmap::semantics {
@@ -48,20 +49,24 @@ cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string&
   std::ifstream in(file, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in && !in.eof()) throw InputError(file.string(), "cannot read the ONNX model");
-  std::optional<FoldedModel> rewritten;
+  std::optional<FoldedModel> folded_input;
+  std::optional<std::string> fused;
   try {
-    rewritten = fold_space_to_depth_input(bytes);
+    folded_input = fold_space_to_depth_input(bytes);
+    fused = fuse_silu(folded_input ? folded_input->onnx : bytes);
   } catch (const std::runtime_error& ex) {
     throw InputError(file.string(), std::string("not an ONNX model: ") + ex.what());
   }
-  if (!rewritten) return net_from_bytes(bytes, file);
+  if (!folded_input && !fused) return net_from_bytes(bytes, file);
+  const std::string& rewritten = fused ? *fused : folded_input->onnx;
   try {
-    cv::dnn::Net net = on_cpu(cv::dnn::readNetFromONNX(rewritten->onnx.data(), rewritten->onnx.size()), file);
-    folded = std::move(rewritten->input);
+    if (fused) register_silu_layer();
+    cv::dnn::Net net = on_cpu(cv::dnn::readNetFromONNX(rewritten.data(), rewritten.size()), file);
+    if (folded_input) folded = std::move(folded_input->input);
     return net;
   } catch (const cv::Exception& ex) {  // our rewrite's fault, not the user's: use the model as it is
-    spdlog::warn("{}: the model with its input stage folded does not load ({}); using it unchanged", file.string(),
-                 ex.msg);
+    spdlog::warn("{}: the model with its input stage folded or its SiLUs fused does not load ({}); using it unchanged",
+                 file.string(), ex.msg);
     return net_from_bytes(bytes, file);
   }
 }

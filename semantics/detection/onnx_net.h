@@ -16,7 +16,8 @@ cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string&
 
 // The same, with a strided-slice input stage folded out of the graph (onnx_fold.h) when the model
 // has one: `folded` then says how to rearrange the input blob before Net::setInput; it is left
-// empty when the model is loaded as it is.
+// empty when the model is loaded without it. SiLU activations are fused into one layer each
+// (fuse_silu, silu_layer.h); the outputs then differ from the original model's by float rounding.
 cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint,
                            std::optional<SpaceToDepth>& folded);
 

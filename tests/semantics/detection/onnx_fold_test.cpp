@@ -1,10 +1,12 @@
 // The protobuf wire reader/writer and the folding of a strided-slice input stage (onnx_fold.h): on a
 // small Focus model built here, and on the shipped YOLOX-nano when ../shared/models has it. The
-// folded network must give exactly the output of the original on the same image.
+// folded network must give exactly the output of the original on the same image. Also the SiLU
+// fusion (fuse_silu) and its layer's kernel (silu_layer.h): the same output up to float rounding.
 #include "semantics/detection/onnx_fold.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <iterator>
 #include <opencv2/dnn.hpp>
@@ -15,6 +17,7 @@
 #include "semantics/detection/model_search.h"
 #include "semantics/detection/onnx_net.h"
 #include "semantics/detection/protobuf_wire.h"
+#include "semantics/detection/silu_layer.h"
 #include "tests/semantics/detection/detection_test_support.h"
 
 namespace wardmap::semantics {
@@ -81,6 +84,44 @@ std::string focus_model(const FocusSpec& spec = {}) {
   const std::string opset = serialize({bytes_field(1, ""), varint_field(2, 11)});
   return serialize(
       {varint_field(1, 7), bytes_field(2, "wardmap-test"), bytes_field(7, serialize(g)), bytes_field(8, opset)});
+}
+
+enum class SiluShape { kXTimesSigmoid, kSigmoidTimesX, kGate, kSigmoidAlsoOutput, kSigmoidUsedTwice };
+
+// x (1x2x3x4) -> Sigmoid -> s; Mul(x, s) -> m; m -> Relu -> y, with the variations of SiluShape:
+// the Mul's inputs swapped, a gate (Sigmoid of another tensor times x: OSNet's channel gate, not
+// a SiLU), the Sigmoid's output also a graph output, or also read by a second node.
+std::string silu_model(SiluShape shape) {
+  std::vector<wire::Field> g;
+  const std::string gated = shape == SiluShape::kGate ? "g" : "x";
+  if (shape == SiluShape::kGate) g.push_back(bytes_field(1, node("Relu", {"x"}, {"g"})));
+  g.push_back(bytes_field(1, node("Sigmoid", {gated}, {"s"})));
+  g.push_back(bytes_field(1, node("Mul", shape == SiluShape::kSigmoidTimesX ? std::vector<std::string>{"s", "x"}
+                                                                                : std::vector<std::string>{"x", "s"},
+                                  {"m"})));
+  if (shape == SiluShape::kSigmoidUsedTwice) {
+    g.push_back(bytes_field(1, node("Add", {"m", "s"}, {"a"})));
+    g.push_back(bytes_field(1, node("Relu", {"a"}, {"y"})));
+  } else {
+    g.push_back(bytes_field(1, node("Relu", {"m"}, {"y"})));
+  }
+  g.push_back(bytes_field(2, "silu_test"));
+  g.push_back(bytes_field(11, float_value("x", {1, 2, 3, 4})));
+  g.push_back(bytes_field(12, float_value("y", {1, 2, 3, 4})));
+  if (shape == SiluShape::kSigmoidAlsoOutput) g.push_back(bytes_field(12, float_value("s", {1, 2, 3, 4})));
+  const std::string opset = serialize({bytes_field(1, ""), varint_field(2, 11)});
+  return serialize(
+      {varint_field(1, 7), bytes_field(2, "wardmap-test"), bytes_field(7, serialize(g)), bytes_field(8, opset)});
+}
+
+// The op types of a model's nodes, in order.
+std::vector<std::string> op_types(const std::string& onnx) {
+  std::vector<std::string> ops;
+  for (const wire::Field& f : wire::parse(onnx))
+    if (f.number == 7)
+      for (const std::string& n : wire::strings(wire::parse(f.bytes), 1))
+        ops.push_back(wire::strings(wire::parse(n), 4).front());
+  return ops;
 }
 
 cv::Mat forward(const std::string& onnx, const cv::Mat& blob) {
@@ -160,7 +201,59 @@ TEST(OnnxFold, OtherGraphsAreLeftAlone) {
                std::runtime_error);  // truncated
 }
 
-TEST(OnnxFold, YoloxNanoFoldedGivesTheSameOutput) {
+TEST(Silu, KernelMatchesTheFormulaWithStdExp) {
+  // Every length up to 19 (the 8- and 4-lane loops' tails), in place and not, values from -100 to
+  // 100 and the clamp's edges.
+  std::vector<float> values = {0.0f, -0.0f, 1e-30f, -1e-30f, 87.0f, -87.0f, 88.0f, -88.0f, 90.0f, -90.0f, 100.0f, -100.0f};
+  for (int i = -2000; i <= 2000; ++i) values.push_back(static_cast<float>(i) * 0.037f);
+  for (void (*kernel)(const float*, float*, std::size_t) : {&silu, &silu_4lanes}) {
+    std::vector<float> out(values.size());
+    kernel(values.data(), out.data(), values.size());
+    for (size_t i = 0; i < values.size(); ++i) {
+      const double x = values[i], expected = x / (1.0 + std::exp(-x));
+      EXPECT_NEAR(out[i], expected, 1e-6 * std::abs(expected) + 1e-30) << "x = " << x;
+    }
+    for (std::size_t n = 0; n <= 19; ++n) {
+      std::vector<float> in(values.begin() + 100, values.begin() + 100 + static_cast<long>(n)), copy = in;
+      std::vector<float> separate(n + 1, -7.0f);
+      kernel(in.data(), separate.data(), n);
+      kernel(copy.data(), copy.data(), n);  // in place
+      for (std::size_t i = 0; i < n; ++i) {
+        EXPECT_EQ(copy[i], separate[i]);
+        EXPECT_NEAR(separate[i], in[i] / (1.0 + std::exp(-double{in[i]})), 1e-6);
+      }
+      EXPECT_EQ(separate[n], -7.0f) << "wrote past the end at n = " << n;
+    }
+  }
+}
+
+TEST(OnnxFold, SiluPairsAreFusedAndTheOutputMatches) {
+  register_silu_layer();
+  const int dims[4] = {1, 2, 3, 4};
+  cv::Mat blob(4, dims, CV_32F);
+  cv::randu(blob, -6.0, 6.0);
+  for (SiluShape shape : {SiluShape::kXTimesSigmoid, SiluShape::kSigmoidTimesX}) {
+    const std::string onnx = silu_model(shape);
+    const std::optional<std::string> fused = fuse_silu(onnx);
+    ASSERT_TRUE(fused.has_value());
+    EXPECT_EQ(op_types(*fused), (std::vector<std::string>{kSiluOpType, "Relu"}));
+    const cv::Mat reference = forward(onnx, blob), out = forward(*fused, blob);
+    ASSERT_EQ(out.total(), reference.total());
+    EXPECT_LE(cv::norm(out.reshape(1, 1), reference.reshape(1, 1), cv::NORM_INF), 1e-5);
+    EXPECT_GT(cv::norm(out.reshape(1, 1), cv::NORM_INF), 0.5);  // not all zero
+  }
+}
+
+TEST(OnnxFold, SigmoidsThatAreNotSiluAreLeftAlone) {
+  for (SiluShape shape : {SiluShape::kGate, SiluShape::kSigmoidAlsoOutput, SiluShape::kSigmoidUsedTwice})
+    EXPECT_FALSE(fuse_silu(silu_model(shape)).has_value()) << static_cast<int>(shape);
+  EXPECT_FALSE(fuse_silu(focus_model()).has_value());
+  EXPECT_THROW(fuse_silu("\x0a\x05"
+                         "ab"),
+               std::runtime_error);  // truncated
+}
+
+TEST(OnnxFold, YoloxNanoRewrittenGivesTheSameOutput) {
   WARDMAP_REQUIRE_MODEL("yolox-nano/yolox_nano_416x416.onnx");
   WARDMAP_REQUIRE_DATA("images");
   const auto file = wardmap::test::shared_models_dir() / "yolox-nano/yolox_nano_416x416.onnx";
@@ -170,6 +263,10 @@ TEST(OnnxFold, YoloxNanoFoldedGivesTheSameOutput) {
   const std::vector<std::array<int, 2>> yolox_order = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
   EXPECT_EQ(fold->offsets, yolox_order);
   cv::dnn::Net original = load_onnx_net(file, "missing");
+  // Each SiLU took the place of a Sigmoid (and a Mul); the heads' own Sigmoids stay.
+  const int silus = folded.getLayersCount(kSiluOpType);
+  EXPECT_GT(silus, 50);
+  EXPECT_EQ(silus, original.getLayersCount("Sigmoid") - folded.getLayersCount("Sigmoid"));
 
   ModelDescription model = load_model_description(model_descriptions_dir() / "yolox-nano.yaml");
   const cv::Mat image = cv::imread((wardmap::test::shared_data_dir() / "images" / "bus.jpg").string());

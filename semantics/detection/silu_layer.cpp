@@ -1,0 +1,147 @@
+#include "semantics/detection/silu_layer.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <mutex>
+#include <vector>
+
+#include <opencv2/core/utility.hpp>
+#include <opencv2/dnn.hpp>
+#include <opencv2/dnn/all_layers.hpp>
+#include <opencv2/dnn/layer.details.hpp>
+
+// silu_lanes<8> and silu_loop<8> are always inlined into silu_8lanes, which has AVX enabled; GCC's
+// note that 32-byte vector values change the ABI without AVX concerns only out-of-line calls (it
+// is reported at the end of the file, hence for the whole file).
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace wardmap::semantics {
+
+namespace {
+
+// GCC / Clang vector extensions: W floats (or int32) in one register.
+template <int W>
+struct Lanes {
+  typedef float F __attribute__((vector_size(4 * W)));
+  typedef std::int32_t I __attribute__((vector_size(4 * W)));
+};
+
+// x / (1 + exp(-x)), lane by lane. exp: range reduction by ln 2 in two parts, then Cephes' expf
+// polynomial, then 2^n from the exponent bits. -x is clamped to [-87, 88] (exp stays a normal
+// float), which changes no result: sigmoid is then 0 or 1 to float precision.
+template <int W>
+__attribute__((always_inline)) inline typename Lanes<W>::F silu_lanes(typename Lanes<W>::F x) {
+  using F = typename Lanes<W>::F;
+  using I = typename Lanes<W>::I;
+  F t = -x;
+  t = t > 88.0f ? F{} + 88.0f : t;
+  t = t < -87.0f ? F{} - 87.0f : t;
+  const F round = F{} + 12582912.0f;  // 1.5 * 2^23: adding and taking it away rounds to an integer
+  const F n = (t * 1.44269504088896341f + round) - round;
+  F r = t - n * 0.693359375f;
+  r = r + n * 2.12194440e-4f;
+  F p = F{} + 1.9875691500e-4f;
+  p = p * r + 1.3981999507e-3f;
+  p = p * r + 8.3334519073e-3f;
+  p = p * r + 4.1665795894e-2f;
+  p = p * r + 1.6666665459e-1f;
+  p = p * r + 5.0000001201e-1f;
+  p = p * (r * r) + r + 1.0f;
+  const I exponent = (__builtin_convertvector(n, I) + 127) << 23;
+  F scale;
+  std::memcpy(&scale, &exponent, sizeof scale);
+  return x / (1.0f + p * scale);
+}
+
+template <int W>
+__attribute__((always_inline)) inline void silu_loop(const float* src, float* dst, std::size_t n) {
+  using F = typename Lanes<W>::F;
+  std::size_t i = 0;
+  for (; i + W <= n; i += W) {
+    F x;
+    std::memcpy(&x, src + i, sizeof x);
+    const F y = silu_lanes<W>(x);
+    std::memcpy(dst + i, &y, sizeof y);
+  }
+  if (i == n) return;
+  float in[W] = {}, out[W];
+  std::memcpy(in, src + i, (n - i) * sizeof(float));
+  F x;
+  std::memcpy(&x, in, sizeof x);
+  const F y = silu_lanes<W>(x);
+  std::memcpy(out, &y, sizeof y);
+  std::memcpy(dst + i, out, (n - i) * sizeof(float));
+}
+
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define WARDMAP_SILU_AVX2 1
+__attribute__((target("avx2,fma"))) void silu_8lanes(const float* src, float* dst, std::size_t n) {
+  silu_loop<8>(src, dst, n);
+}
+bool cpu_has_avx2() {
+  static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  return has;
+}
+#endif
+
+// The layer. As an ActivationLayer it is fused into a convolution before it (forwardSlice on each
+// output stripe); forward covers the other cases.
+class SiluLayer : public cv::dnn::ActivationLayer {
+ public:
+  explicit SiluLayer(const cv::dnn::LayerParams& params) { setParamsFrom(params); }
+
+  static cv::Ptr<cv::dnn::Layer> create(cv::dnn::LayerParams& params) {
+    return cv::Ptr<cv::dnn::Layer>(new SiluLayer(params));
+  }
+
+  bool getMemoryShapes(const std::vector<cv::dnn::MatShape>& inputs, int /*required_outputs*/,
+                       std::vector<cv::dnn::MatShape>& outputs,
+                       std::vector<cv::dnn::MatShape>& /*internals*/) const override {
+    outputs = inputs;
+    return true;  // in place
+  }
+
+  void forward(cv::InputArrayOfArrays inputs_arr, cv::OutputArrayOfArrays outputs_arr,
+               cv::OutputArrayOfArrays /*internals*/) override {
+    std::vector<cv::Mat> inputs, outputs;
+    inputs_arr.getMatVector(inputs);
+    outputs_arr.getMatVector(outputs);
+    for (size_t k = 0; k < inputs.size(); ++k) {
+      CV_Assert(inputs[k].type() == CV_32F && inputs[k].isContinuous() && outputs[k].isContinuous() &&
+                inputs[k].total() == outputs[k].total());
+      const float* src = inputs[k].ptr<float>();
+      float* dst = outputs[k].ptr<float>();
+      const std::size_t total = inputs[k].total();
+      constexpr std::size_t kStripe = 1 << 14;
+      cv::parallel_for_(cv::Range(0, static_cast<int>((total + kStripe - 1) / kStripe)), [&](const cv::Range& r) {
+        const std::size_t begin = static_cast<std::size_t>(r.start) * kStripe;
+        const std::size_t end = std::min(total, static_cast<std::size_t>(r.end) * kStripe);
+        silu(src + begin, dst + begin, end - begin);
+      });
+    }
+  }
+
+  // Channels [cn0, cn1) of a convolution's output, `len` values each, planes `plane_size` apart.
+  void forwardSlice(const float* src, float* dst, int len, size_t plane_size, int cn0, int cn1) const override {
+    for (int c = cn0; c < cn1; ++c, src += plane_size, dst += plane_size) silu(src, dst, static_cast<std::size_t>(len));
+  }
+};
+
+}  // namespace
+
+void silu_4lanes(const float* src, float* dst, std::size_t n) { silu_loop<4>(src, dst, n); }
+
+void silu(const float* src, float* dst, std::size_t n) {
+#ifdef WARDMAP_SILU_AVX2
+  if (cpu_has_avx2()) return silu_8lanes(src, dst, n);
+#endif
+  silu_4lanes(src, dst, n);
+}
+
+void register_silu_layer() {
+  static std::once_flag once;
+  std::call_once(once, [] { cv::dnn::LayerFactory::registerLayer(kSiluOpType, SiluLayer::create); });
+}
+
+}  // namespace wardmap::semantics
