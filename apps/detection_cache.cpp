@@ -47,10 +47,12 @@ DetectionCache::Entry DetectionCache::compute(const cv::Mat& image, double times
   auto t0 = std::chrono::steady_clock::now();
   e.detections = detector_.detect(image, timestamp);
   const auto t1 = std::chrono::steady_clock::now();
-  if (embed_)
-    for (const auto& d : e.detections) e.embeddings.push_back(embed_(image, d.box));
-  else
-    e.embeddings.resize(e.detections.size());
+  if (embed_ && !e.detections.empty()) {
+    std::vector<Eigen::Vector4d> boxes;
+    for (const auto& d : e.detections) boxes.push_back(d.box);
+    e.embeddings = embed_(image, boxes);
+  }
+  e.embeddings.resize(e.detections.size());
   const auto t2 = std::chrono::steady_clock::now();
   std::lock_guard<std::mutex> lock(mutex_);
   detection_seconds_.push_back(std::chrono::duration<double>(t1 - t0).count());
@@ -72,16 +74,28 @@ std::vector<semantics::Detection> DetectionCache::detect(const cv::Mat& image, d
 
 semantics::SemanticMapper::EmbedFn DetectionCache::embed_fn() {
   if (!embed_) return {};
-  return [this](const cv::Mat& image, const Eigen::Vector4d& box) -> Eigen::VectorXf {
+  return [this](const cv::Mat& image, const std::vector<Eigen::Vector4d>& boxes) {
+    std::vector<Eigen::VectorXf> out(boxes.size());
+    std::vector<size_t> missing;  // boxes the detector did not give for that frame
     {
       std::lock_guard<std::mutex> lock(mutex_);
       const auto it = cache_.find(last_timestamp_);
-      if (it != cache_.end())
-        for (size_t i = 0; i < it->second.detections.size(); ++i)
-          if (it->second.detections[i].box == box) return it->second.embeddings[i];
+      for (size_t b = 0; b < boxes.size(); ++b) {
+        bool found = false;
+        if (it != cache_.end())
+          for (size_t i = 0; i < it->second.detections.size() && !found; ++i)
+            if (it->second.detections[i].box == boxes[b]) out[b] = it->second.embeddings[i], found = true;
+        if (!found) missing.push_back(b);
+      }
     }
+    if (missing.empty()) return out;
+    std::vector<Eigen::Vector4d> rest;
+    for (size_t b : missing) rest.push_back(boxes[b]);
     std::lock_guard<std::mutex> compute_lock(compute_mutex_);
-    return embed_(image, box);  // a box the detector did not give for that frame
+    std::vector<Eigen::VectorXf> computed = embed_(image, rest);
+    computed.resize(rest.size());
+    for (size_t k = 0; k < missing.size(); ++k) out[missing[k]] = std::move(computed[k]);
+    return out;
   };
 }
 

@@ -92,13 +92,10 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
   setup->detector = semantics::make_detector(det, job.sequence);
   semantics::SemanticMapper::EmbedFn embed;
   if (job.embedding) {
-    auto embedder = std::make_shared<semantics::Embedder>(semantics::find_embedder_file(det.models_dir));
-    embed = [embedder](const cv::Mat& image, const Eigen::Vector4d& box) -> Eigen::VectorXf {
-      try {
-        return embedder->embed(image, box);
-      } catch (const std::invalid_argument&) {
-        return {};  // a sliver of a box: no appearance for this measurement
-      }
+    auto embedder = std::make_shared<semantics::Embedder>(semantics::find_embedder_file(det.models_dir), det.embedding_threads);
+    // A sliver of a box gets an empty embedding: no appearance for that measurement.
+    embed = [embedder](const cv::Mat& image, const std::vector<Eigen::Vector4d>& boxes) {
+      return embedder->embed_all(image, boxes);
     };
   }
   setup->cache = std::make_unique<DetectionCache>(*setup->detector, std::move(embed));

@@ -50,19 +50,17 @@ void BM_SemanticStagesKitchenYolox(benchmark::State& state) {
     det.kind = "yolox";
     det.landmark_set = "indoor";
     detector = semantics::make_detector(det, root);
-    embedder = std::make_shared<semantics::Embedder>(semantics::find_embedder_file());
+    embedder = std::make_shared<semantics::Embedder>(semantics::find_embedder_file(), threads);
   } catch (const std::exception& e) {
     cv::setNumThreads(saved_threads);
     return state.SkipWithError((std::string("models not available: ") + e.what()).c_str());
   }
-  // As apps/semantic_job.cpp: a crop too thin to describe gets no appearance.
-  const semantics::SemanticMapper::EmbedFn embed = [embedder](const cv::Mat& image, const Eigen::Vector4d& box) -> Eigen::VectorXf {
-    try {
-      return embedder->embed(image, box);
-    } catch (const std::invalid_argument&) {
-      return {};
-    }
+  // As apps/semantic_job.cpp: the crops on the embedder's networks at once, one per thread.
+  const semantics::SemanticMapper::EmbedFn embed = [embedder](const cv::Mat& image,
+                                                              const std::vector<Eigen::Vector4d>& boxes) {
+    return embedder->embed_all(image, boxes);
   };
+
 
   // Keyframes from the ground-truth poses, decoded before timing.
   auto reader = slam::io::open_sequence(root);

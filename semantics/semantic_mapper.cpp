@@ -1,6 +1,8 @@
 #include "semantics/semantic_mapper.h"
 
 #include <chrono>
+#include <stdexcept>
+#include <string>
 
 
 namespace wardmap::semantics {
@@ -29,19 +31,24 @@ void SemanticMapper::add_keyframe(const KeyframeInput& kf) {
   const std::vector<Detection> dets = detector_.detect(kf.image, kf.timestamp);
   times_.detection.push_back(seconds_since(t0));
 
-  t0 = std::chrono::steady_clock::now();
-  std::vector<Eigen::VectorXf> embeddings(dets.size());
-  if (embed_)
-    for (size_t i = 0; i < dets.size(); ++i) embeddings[i] = embed_(kf.image, dets[i].box);
-  times_.embedding.push_back(seconds_since(t0));
-
-  t0 = std::chrono::steady_clock::now();
   std::vector<Eigen::Vector4d> boxes;
   std::vector<std::string> labels;
   for (const auto& d : dets) {
     boxes.push_back(d.box);
     labels.push_back(d.label);
   }
+
+  t0 = std::chrono::steady_clock::now();
+  std::vector<Eigen::VectorXf> embeddings(dets.size());
+  if (embed_ && !dets.empty()) {
+    embeddings = embed_(kf.image, boxes);
+    if (embeddings.size() != dets.size())
+      throw std::logic_error("SemanticMapper: the embedding function gave " + std::to_string(embeddings.size()) +
+                             " embeddings for " + std::to_string(dets.size()) + " boxes");
+  }
+  times_.embedding.push_back(seconds_since(t0));
+
+  t0 = std::chrono::steady_clock::now();
   auto poses = measure_keyframe_poses(kf.depth, camera_, kf.T_wc, boxes, labels, up, options_);
   for (size_t i = 0; i < dets.size(); ++i) {
     ObjectMeasurement m;

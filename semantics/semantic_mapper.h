@@ -37,8 +37,10 @@ struct StageTimes {
 
 class SemanticMapper {
  public:
-  // L2-normalised appearance embedding of a box in an image; may be empty (no appearance term).
-  using EmbedFn = std::function<Eigen::VectorXf(const cv::Mat&, const Eigen::Vector4d&)>;
+  // L2-normalised appearance embeddings of boxes in one image, one per box, in order; an empty one
+  // means no appearance term for that box. One call per keyframe, so that an embedder can run the
+  // crops at once (Embedder::embed_all).
+  using EmbedFn = std::function<std::vector<Eigen::VectorXf>(const cv::Mat&, const std::vector<Eigen::Vector4d>&)>;
 
   SemanticMapper(const SemanticOptions& options, Detector& detector, EmbedFn embed, const slam::PinholeCamera& camera);
 

@@ -37,6 +37,7 @@ std::optional<std::string> DetectorOptions::validate() const {
   const AnnotationNoise& n = noise;
   for (auto r :
        {check(score_threshold, 0, 1, "score_threshold"), check(nms_iou, 0, 1, "nms_iou"),
+        check(embedding_threads, 1, 8, "embedding_threads"),
         check(n.box_jitter, 0, 1, "annotations.box_jitter"),
         check(n.miss_probability, 0, 1, "annotations.miss_probability"),
         check(n.low_visible_fraction, 0, 1, "annotations.low_visible_fraction"),
@@ -64,6 +65,7 @@ DetectorOptions detector_options_from_yaml(const YAML::Node& section, const std:
   o.models_dir = dir;
   o.model_description = description;
   dk.read("landmark_set", o.landmark_set);
+  dk.read("embedding_threads", o.embedding_threads);
   slam::io::SectionKeys ak = dk.section("annotations");
   AnnotationNoise& n = o.noise;
   ak.read("seed", n.seed);

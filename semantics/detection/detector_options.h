@@ -40,6 +40,7 @@ struct DetectorOptions {
   std::filesystem::path models_dir;         // searched first for weights (see model_search.h); empty = not set
   std::filesystem::path model_description;  // models/<kind>.yaml of the source tree when empty
   std::string landmark_set = "indoor";      // hospital | road | indoor | coco (raw COCO labels, no mapping)
+  int embedding_threads = 2;                // OSNet copies embedding a keyframe's crops at once (Embedder)
   AnnotationNoise noise;                    // annotations back-end only
 
   // A message naming the first bad option and its allowed range, or nullopt.

@@ -3,7 +3,10 @@
 #include "semantics/detection/onnx_net.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
+#include <thread>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
@@ -20,17 +23,23 @@ const cv::Scalar kMean(0.485, 0.456, 0.406);
 const cv::Scalar kStd(0.229, 0.224, 0.225);
 }  // namespace
 
-Embedder::Embedder(const std::filesystem::path& onnx_file) {
-  net_ = load_onnx_net(onnx_file, "embedding model not found (models/README.md says where to get OSNet x0.25)");
+Embedder::Embedder(const std::filesystem::path& onnx_file, int threads) {
+  if (threads < 1 || threads > 8)
+    throw std::invalid_argument("Embedder: threads must be in [1, 8], got " + std::to_string(threads));
+  for (int k = 0; k < threads; ++k)
+    nets_.push_back(
+        load_onnx_net(onnx_file, "embedding model not found (models/README.md says where to get OSNet x0.25)"));
 }
 
-Eigen::VectorXf Embedder::embed(const cv::Mat& image, const Eigen::Vector4d& box) {
-  const cv::Mat bgr = to_bgr8(image);
+namespace {
+
+// The embedding of `box` in a BGR 8-bit image, by `net` (Embedder::embed's contract).
+Eigen::VectorXf embed_crop(cv::dnn::Net& net, const cv::Mat& bgr, const Eigen::Vector4d& box) {
   const double x0 = std::clamp(box[0], 0.0, static_cast<double>(bgr.cols));
   const double y0 = std::clamp(box[1], 0.0, static_cast<double>(bgr.rows));
   const double x1 = std::clamp(box[2], 0.0, static_cast<double>(bgr.cols));
   const double y1 = std::clamp(box[3], 0.0, static_cast<double>(bgr.rows));
-  if (x1 - x0 < kMinCropSide || y1 - y0 < kMinCropSide)
+  if (x1 - x0 < Embedder::kMinCropSide || y1 - y0 < Embedder::kMinCropSide)
     throw std::invalid_argument("Embedder::embed: crop smaller than 2 px after clamping to the image");
   // Whole pixels covering the box.
   const int ix0 = static_cast<int>(std::floor(x0)), iy0 = static_cast<int>(std::floor(y0));
@@ -43,15 +52,62 @@ Eigen::VectorXf Embedder::embed(const cv::Mat& image, const Eigen::Vector4d& box
   crop.convertTo(input, CV_32FC3, 1.0 / 255.0);
   cv::subtract(input, kMean, input);
   cv::divide(input, kStd, input);
-  net_.setInput(cv::dnn::blobFromImage(input));  // 1 x 3 x 256 x 128
-  const cv::Mat out = net_.forward();
-  if (out.total() != static_cast<size_t>(kDimension))
-    throw std::runtime_error("Embedder: expected a " + std::to_string(kDimension) + "-d output, got " +
+  net.setInput(cv::dnn::blobFromImage(input));  // 1 x 3 x 256 x 128
+  const cv::Mat out = net.forward();
+  if (out.total() != static_cast<size_t>(Embedder::kDimension))
+    throw std::runtime_error("Embedder: expected a " + std::to_string(Embedder::kDimension) + "-d output, got " +
                              std::to_string(out.total()));
-  Eigen::VectorXf v = Eigen::Map<const Eigen::VectorXf>(out.ptr<float>(), kDimension);
+  Eigen::VectorXf v = Eigen::Map<const Eigen::VectorXf>(out.ptr<float>(), Embedder::kDimension);
   const float norm = v.norm();
   if (norm > 0) v /= norm;
   return v;
+}
+
+}  // namespace
+
+Eigen::VectorXf Embedder::embed(const cv::Mat& image, const Eigen::Vector4d& box) {
+  return embed_crop(nets_.front(), to_bgr8(image), box);
+}
+
+std::vector<Eigen::VectorXf> Embedder::embed_all(const cv::Mat& image, const std::vector<Eigen::Vector4d>& boxes) {
+  std::vector<Eigen::VectorXf> out(boxes.size());
+  if (boxes.empty()) return out;
+  const cv::Mat bgr = to_bgr8(image);
+  std::atomic<size_t> next{0};
+  // Network k takes the next crop not yet taken until none is left.
+  auto work = [&](cv::dnn::Net& net) {
+    for (size_t i = next++; i < boxes.size(); i = next++) {
+      try {
+        out[i] = embed_crop(net, bgr, boxes[i]);
+      } catch (const std::invalid_argument&) {
+        out[i].resize(0);  // a sliver: no appearance
+      }
+    }
+  };
+  const size_t helpers = std::min(nets_.size(), boxes.size()) - 1;
+  std::vector<std::thread> threads;
+  std::vector<std::exception_ptr> errors(helpers);
+  for (size_t k = 0; k < helpers; ++k)
+    threads.emplace_back([&, k] {
+      try {
+        work(nets_[k + 1]);
+      } catch (...) {
+        errors[k] = std::current_exception();
+        next = boxes.size();  // the others stop after their crop in hand
+      }
+    });
+  std::exception_ptr mine;
+  try {
+    work(nets_.front());
+  } catch (...) {
+    mine = std::current_exception();
+    next = boxes.size();
+  }
+  for (auto& t : threads) t.join();
+  if (mine) std::rethrow_exception(mine);
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+  return out;
 }
 
 }  // namespace wardmap::semantics

@@ -41,11 +41,14 @@ class FakeDetector : public semantics::Detector {
 };
 
 semantics::SemanticMapper::EmbedFn counting_embed(std::atomic<int>& calls) {
-  return [&calls](const cv::Mat&, const Eigen::Vector4d& box) {
-    ++calls;
-    Eigen::VectorXf e(1);
-    e(0) = static_cast<float>(box(0));
-    return e;
+  return [&calls](const cv::Mat&, const std::vector<Eigen::Vector4d>& boxes) {
+    std::vector<Eigen::VectorXf> out;
+    for (const auto& box : boxes) {
+      ++calls;
+      out.emplace_back(1);
+      out.back()(0) = static_cast<float>(box(0));
+    }
+    return out;
   };
 }
 
@@ -64,7 +67,7 @@ TEST(DetectionCache, DetectsEachOfferedImageOnceOnItsThread) {
     const auto d = cache.detect(image, t);
     ASSERT_EQ(d.size(), 1u);
     EXPECT_EQ(d[0].box(0), t);
-    EXPECT_EQ(embed(image, d[0].box)(0), static_cast<float>(t));
+    EXPECT_EQ(embed(image, {d[0].box}).at(0)(0), static_cast<float>(t));
   }
   EXPECT_EQ(det.calls, 5);  // all from the cache
   EXPECT_EQ(embeds, 5);
@@ -82,10 +85,16 @@ TEST(DetectionCache, WithoutItsThreadAnswersOnDemandOnce) {
   EXPECT_EQ(cache.refused(), 1);
   const auto embed = cache.embed_fn();
   const auto d = cache.detect(image, 1);
-  EXPECT_EQ(embed(image, d[0].box)(0), 1.0f);
+  EXPECT_EQ(embed(image, {d[0].box}).at(0)(0), 1.0f);
   cache.detect(image, 1);
   EXPECT_EQ(det.calls, 1);
   EXPECT_EQ(embeds, 1);
+  // A box the detector did not give is embedded now; the cached one is not embedded again.
+  const std::vector<Eigen::VectorXf> both = embed(image, {Eigen::Vector4d(7, 0, 9, 2), d[0].box});
+  ASSERT_EQ(both.size(), 2u);
+  EXPECT_EQ(both[0](0), 7.0f);
+  EXPECT_EQ(both[1](0), 1.0f);
+  EXPECT_EQ(embeds, 2);
 }
 
 // The detector is held back: the queue fills, and offers return at once (false) instead of waiting.

@@ -71,6 +71,31 @@ TEST_F(EmbedderTest, BoxesAreClampedDegenerateCropsThrow) {
   EXPECT_THROW(e.embed(cv::Mat(), bus_), std::invalid_argument);
 }
 
+TEST_F(EmbedderTest, AllBoxesAtOnceGiveWhatOneByOneGives) {
+  const std::vector<Eigen::Vector4d> boxes = {bus_, man_coat_, Eigen::Vector4d(100, 100, 101, 300), man_dark_,
+                                              Eigen::Vector4d(-50, 300, 900, 1200)};
+  for (int threads : {1, 2, 3}) {
+    Embedder e(find_embedder_file(wardmap::test::shared_models_dir()), threads);
+    EXPECT_EQ(e.threads(), threads);
+    for (int round = 0; round < 2; ++round) {
+      const std::vector<Eigen::VectorXf> all = e.embed_all(image_, boxes);
+      ASSERT_EQ(all.size(), boxes.size());
+      for (size_t i = 0; i < boxes.size(); ++i) {
+        if (i == 2) {
+          EXPECT_EQ(all[i].size(), 0) << "a 1 px wide crop has nothing to describe";
+          continue;
+        }
+        const Eigen::VectorXf one = e.embed(image_, boxes[i]);
+        ASSERT_EQ(all[i].size(), Embedder::kDimension);
+        EXPECT_LE((all[i] - one).cwiseAbs().maxCoeff(), 1e-6f) << "box " << i << ", " << threads << " threads";
+      }
+    }
+    EXPECT_TRUE(e.embed_all(image_, {}).empty());
+    EXPECT_THROW(e.embed_all(cv::Mat(), {bus_}), std::invalid_argument);
+  }
+  EXPECT_THROW(Embedder(find_embedder_file(wardmap::test::shared_models_dir()), 0), std::invalid_argument);
+}
+
 TEST(EmbedderFile, MissingFileNamesIt) {
   try {
     Embedder e("/nonexistent/osnet.onnx");

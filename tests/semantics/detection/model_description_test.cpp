@@ -185,6 +185,9 @@ TEST(DetectorOptions, ValidateAndYamlNameTheKey) {
   o.nms_iou = 1.5;
   EXPECT_NE(o.validate()->find("'nms_iou' must be in [0, 1]"), std::string::npos);
   EXPECT_THROW(make_detector(o), InputError);
+  o = DetectorOptions();
+  o.embedding_threads = 0;
+  EXPECT_NE(o.validate()->find("'embedding_threads' must be in [1, 8]"), std::string::npos);
 
   const YAML::Node node = YAML::Load(
       "kind: annotations\nscore_threshold: 0.5\nlandmark_set: hospital\nannotations: {seed: 7, box_jitter: 0.1}\n");
@@ -220,6 +223,8 @@ TEST(DetectorOptions, ValidateAndYamlNameTheKey) {
             std::string::npos);
   EXPECT_NE(error("- yolox").find("key 'detection': expected a section"), std::string::npos);
   EXPECT_EQ(detector_options_from_yaml(YAML::Load("models_dir: /opt/models"), "s.yaml").models_dir, "/opt/models");
+  EXPECT_EQ(detector_options_from_yaml(YAML::Load("embedding_threads: 1"), "s.yaml").embedding_threads, 1);
+  EXPECT_EQ(DetectorOptions().embedding_threads, 2);
 }
 
 TEST(Letterbox, TopLeftWithPadding) {
