@@ -11,11 +11,6 @@
 #include <opencv2/dnn/all_layers.hpp>
 #include <opencv2/dnn/layer.details.hpp>
 
-// silu_lanes<8> and silu_loop<8> are always inlined into silu_8lanes, which has AVX enabled; GCC's
-// note that 32-byte vector values change the ABI without AVX concerns only out-of-line calls (it
-// is reported at the end of the file, hence for the whole file).
-#pragma GCC diagnostic ignored "-Wpsabi"
-
 namespace wardmap::semantics {
 
 namespace {
@@ -27,13 +22,16 @@ struct Lanes {
   typedef std::int32_t I __attribute__((vector_size(4 * W)));
 };
 
-// x / (1 + exp(-x)), lane by lane. exp: range reduction by ln 2 in two parts, then Cephes' expf
-// polynomial, then 2^n from the exponent bits. -x is clamped to [-87, 88] (exp stays a normal
-// float), which changes no result: sigmoid is then 0 or 1 to float precision.
+// dst[0..W) = x / (1 + exp(-x)) for x = src[0..W). exp: range reduction by ln 2 in two parts, then
+// Cephes' expf polynomial, then 2^n from the exponent bits. -x is clamped to [-87, 88] (exp stays a
+// normal float), which changes no result: sigmoid is then 0 or 1 to float precision. Vectors are
+// loaded and stored here, never passed: their ABI differs with and without AVX.
 template <int W>
-__attribute__((always_inline)) inline typename Lanes<W>::F silu_lanes(typename Lanes<W>::F x) {
+__attribute__((always_inline)) inline void silu_lanes(const float* src, float* dst) {
   using F = typename Lanes<W>::F;
   using I = typename Lanes<W>::I;
+  F x;
+  std::memcpy(&x, src, sizeof x);
   F t = -x;
   t = t > 88.0f ? F{} + 88.0f : t;
   t = t < -87.0f ? F{} - 87.0f : t;
@@ -51,26 +49,18 @@ __attribute__((always_inline)) inline typename Lanes<W>::F silu_lanes(typename L
   const I exponent = (__builtin_convertvector(n, I) + 127) << 23;
   F scale;
   std::memcpy(&scale, &exponent, sizeof scale);
-  return x / (1.0f + p * scale);
+  const F y = x / (1.0f + p * scale);
+  std::memcpy(dst, &y, sizeof y);
 }
 
 template <int W>
 __attribute__((always_inline)) inline void silu_loop(const float* src, float* dst, std::size_t n) {
-  using F = typename Lanes<W>::F;
   std::size_t i = 0;
-  for (; i + W <= n; i += W) {
-    F x;
-    std::memcpy(&x, src + i, sizeof x);
-    const F y = silu_lanes<W>(x);
-    std::memcpy(dst + i, &y, sizeof y);
-  }
+  for (; i + W <= n; i += W) silu_lanes<W>(src + i, dst + i);
   if (i == n) return;
   float in[W] = {}, out[W];
   std::memcpy(in, src + i, (n - i) * sizeof(float));
-  F x;
-  std::memcpy(&x, in, sizeof x);
-  const F y = silu_lanes<W>(x);
-  std::memcpy(out, &y, sizeof y);
+  silu_lanes<W>(in, out);
   std::memcpy(dst + i, out, (n - i) * sizeof(float));
 }
 
