@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
+#include <system_error>
 #include <thread>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
@@ -87,15 +88,20 @@ std::vector<Eigen::VectorXf> Embedder::embed_all(const cv::Mat& image, const std
   const size_t helpers = std::min(nets_.size(), boxes.size()) - 1;
   std::vector<std::thread> threads;
   std::vector<std::exception_ptr> errors(helpers);
-  for (size_t k = 0; k < helpers; ++k)
-    threads.emplace_back([&, k] {
-      try {
-        work(nets_[k + 1]);
-      } catch (...) {
-        errors[k] = std::current_exception();
-        next = boxes.size();  // the others stop after their crop in hand
-      }
-    });
+  for (size_t k = 0; k < helpers; ++k) {
+    try {
+      threads.emplace_back([&, k] {
+        try {
+          work(nets_[k + 1]);
+        } catch (...) {
+          errors[k] = std::current_exception();
+          next = boxes.size();  // the others stop after their crop in hand
+        }
+      });
+    } catch (const std::system_error&) {
+      break;  // no thread to be had: the threads started (and this one) share the crops
+    }
+  }
   std::exception_ptr mine;
   try {
     work(nets_.front());
