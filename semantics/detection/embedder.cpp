@@ -75,42 +75,34 @@ std::vector<Eigen::VectorXf> Embedder::embed_all(const cv::Mat& image, const std
   if (boxes.empty()) return out;
   const cv::Mat bgr = to_bgr8(image);
   std::atomic<size_t> next{0};
-  // Network k takes the next crop not yet taken until none is left.
-  auto work = [&](cv::dnn::Net& net) {
-    for (size_t i = next++; i < boxes.size(); i = next++) {
-      try {
-        out[i] = embed_crop(net, bgr, boxes[i]);
-      } catch (const std::invalid_argument&) {
-        out[i].resize(0);  // a sliver: no appearance
+  // Worker k embeds, with network k, the next crop not yet taken until none is left; worker 0 is
+  // this thread. The first error stops the others after their crop in hand.
+  const size_t workers = std::min(nets_.size(), boxes.size());
+  std::vector<std::exception_ptr> errors(workers);
+  auto work = [&](size_t k) {
+    try {
+      for (size_t i = next++; i < boxes.size(); i = next++) {
+        try {
+          out[i] = embed_crop(nets_[k], bgr, boxes[i]);
+        } catch (const std::invalid_argument&) {
+          out[i].resize(0);  // a sliver: no appearance
+        }
       }
+    } catch (...) {
+      errors[k] = std::current_exception();
+      next = boxes.size();
     }
   };
-  const size_t helpers = std::min(nets_.size(), boxes.size()) - 1;
   std::vector<std::thread> threads;
-  std::vector<std::exception_ptr> errors(helpers);
-  for (size_t k = 0; k < helpers; ++k) {
+  for (size_t k = 1; k < workers; ++k) {
     try {
-      threads.emplace_back([&, k] {
-        try {
-          work(nets_[k + 1]);
-        } catch (...) {
-          errors[k] = std::current_exception();
-          next = boxes.size();  // the others stop after their crop in hand
-        }
-      });
+      threads.emplace_back(work, k);
     } catch (const std::system_error&) {
       break;  // no thread to be had: the threads started (and this one) share the crops
     }
   }
-  std::exception_ptr mine;
-  try {
-    work(nets_.front());
-  } catch (...) {
-    mine = std::current_exception();
-    next = boxes.size();
-  }
+  work(0);
   for (auto& t : threads) t.join();
-  if (mine) std::rethrow_exception(mine);
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);
   return out;
