@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <tuple>
 #include <thread>
 
 #include "hdp/crf_sampler.h"
@@ -254,6 +255,36 @@ void reassign_by_projection(std::vector<ObjectLandmark>& landmarks, const std::v
   if (!changed) return;
   for (auto& l : landmarks) l.measurements.clear();
   for (const auto& [id, l] : landmark_of) landmarks[l].measurements.push_back(id);
+}
+
+int keep_one_per_keyframe(std::vector<ObjectLandmark>& landmarks, const std::vector<ObjectMeasurement>& ms,
+                          const KeyframeViews* views, const std::function<void(ObjectLandmark&)>& place) {
+  int removed = 0;
+  for (ObjectLandmark& l : landmarks) {
+    std::map<int, std::vector<int>> by_keyframe;
+    for (int id : l.measurements) by_keyframe[ms[id].keyframe].push_back(id);
+    std::set<int> off;
+    for (const auto& [kf, ids] : by_keyframe) {
+      if (ids.size() < 2) continue;
+      std::optional<Eigen::Vector4d> projection;
+      if (views && kf >= 0 && kf < static_cast<int>(views->T_wc.size())) projection = projected_box(l.pose, *views, kf);
+      // Ranked by (IoU with the projection, is the pose measurement, is placed, score).
+      const auto rank = [&](int id) {
+        return std::make_tuple(projection ? box_iou(*projection, ms[id].box) : 0.0, id == l.pose_measurement,
+                               ms[id].pose.has_value(), ms[id].score);
+      };
+      const int keep = *std::max_element(ids.begin(), ids.end(), [&](int a, int b) { return rank(a) < rank(b); });
+      for (int id : ids)
+        if (id != keep) off.insert(id);
+    }
+    if (off.empty()) continue;
+    removed += static_cast<int>(off.size());
+    const bool lost_pose = off.count(l.pose_measurement) > 0;
+    l.measurements.erase(std::remove_if(l.measurements.begin(), l.measurements.end(), [&](int id) { return off.count(id) > 0; }),
+                         l.measurements.end());
+    if (lost_pose) place(l);
+  }
+  return removed;
 }
 
 void drop_landmarks_inside_other_classes(std::vector<ObjectLandmark>& landmarks,
@@ -584,8 +615,12 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
     drop_landmarks_inside_other_classes(candidates, options.support_classes);
   if (ao.reproject != "none" && views && !hdp_only) {
     reassign_by_projection(candidates, ms, *views, ao.reproject_min_iou, ao.reproject_margin, ao.reproject == "all");
-    // A landmark whose measurements the projections gave to others, down to its pinned pose
-    // measurement (a fragment placed 2 m off), is no longer reported: its last measurements drop.
+  }
+  if (ao.one_per_keyframe) keep_one_per_keyframe(candidates, ms, views, place);
+  // A landmark whose measurements the projections gave to others, down to its pinned pose
+  // measurement (a fragment placed 2 m off), or that kept too few, is no longer reported: its last
+  // measurements drop.
+  {
     std::vector<bool> gone(candidates.size());
     for (size_t i = 0; i < candidates.size(); ++i) gone[i] = !reportable(candidates[i].measurements, candidates[i].label);
     erase_gone(candidates, gone);

@@ -90,6 +90,16 @@ struct KeyframeViews {
 void reassign_by_projection(std::vector<ObjectLandmark>& landmarks, const std::vector<ObjectMeasurement>& ms,
                             const KeyframeViews& views, double min_iou, double margin, bool placed_too);
 
+// A detector gives one box per object and keyframe, so two measurements of one keyframe on one
+// landmark cannot both be right (our addition; the sampler's cannot-link holds the same fact for
+// group objects, but a landmark merge or an MOT track that switched objects can still bring two
+// together). Per landmark and keyframe the measurement whose box best fits the landmark's
+// projection (IoU; without a projection the pose measurement, then a placed one, then the higher
+// score) stays; the others leave the landmark (reported as dropped). A landmark that loses its pose
+// measurement is placed again by `place`. Returns the number of measurements taken off.
+int keep_one_per_keyframe(std::vector<ObjectLandmark>& landmarks, const std::vector<ObjectMeasurement>& ms,
+                          const KeyframeViews* views, const std::function<void(ObjectLandmark&)>& place);
+
 // MOT inside one keyframe group (Assoc. III-A.1): runs a fresh tracker over the group's keyframes
 // in order; returns for every measurement of those keyframes its track id (-1 when the tracker
 // dropped it). `by_keyframe[k]` lists the measurement ids of keyframe k. With `views`, a track's

@@ -160,6 +160,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   ak.read("merge_contained", o.association.merge_contained);
   ak.read("drop_inside_other_class", o.association.drop_inside_other_class);
   ak.read("bridge_unplaced_tracks", o.association.bridge_unplaced_tracks);
+  ak.read("one_per_keyframe", o.association.one_per_keyframe);
   ak.read("reproject", o.association.reproject);
   ak.read("reproject_min_iou", o.association.reproject_min_iou);
   ak.read("reproject_margin", o.association.reproject_margin);

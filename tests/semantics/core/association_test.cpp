@@ -708,6 +708,68 @@ TEST(Association, UnplacedMeasurementsFollowTheLandmarksProjections) {
   test::expect_load_error_names("association: {reproject: placed}", "association.reproject");
 }
 
+// A chair in front of another, seen by a still camera: its boxes and the rear chair's both ended on
+// the rear chair's landmark (an MOT track that switched objects). In keyframe 0 the front chair's
+// box is the landmark's pose measurement, placed on the rear chair; in keyframe 1 neither is
+// placed. Only the box that fits the landmark's projection stays, the landmark is placed again from
+// what it keeps; without views the pose measurement stays, then a placed one, then the higher score.
+TEST(Association, OneMeasurementPerKeyframeStaysOnALandmark) {
+  const slam::PinholeCamera cam = test::vga_camera(525);
+  const KeyframeViews views{cam, std::vector<slam::SE3>(3)};
+  const Eigen::Vector3d size(0.5, 0.5, 0.85);
+  const Eigen::Vector3d rear(0.6, 0.5, 4.0), front(0.9, 0.9, 3.2);
+  std::vector<ObjectMeasurement> ms;
+  const auto add = [&](int kf, const Eigen::Vector3d& seen, bool placed, const Eigen::Vector3d& at, double score) {
+    ObjectMeasurement m;
+    m.id = static_cast<int>(ms.size());
+    m.keyframe = kf;
+    m.box = image_box(cam, seen, size);
+    m.label = "chair";
+    m.score = score;
+    if (placed) m.pose = ObjectPose{slam::SE3(Eigen::Quaterniond::Identity(), at), size};
+    ms.push_back(m);
+    return m.id;
+  };
+  const int f0 = add(0, front, true, rear + Eigen::Vector3d(0.05, 0, 0), 0.9), r0 = add(0, rear, false, rear, 0.8);
+  const int f1 = add(1, front, false, front, 0.9), r1 = add(1, rear, false, rear, 0.8);
+  const int r2 = add(2, rear, true, rear, 0.8);
+  std::vector<int> placed_with;  // the measurements each call of `place` saw
+  const auto place = [&](ObjectLandmark& l) {
+    placed_with = l.measurements;
+    for (int id : l.measurements)
+      if (ms[id].pose) {
+        l.pose_measurement = id;
+        l.pose = *ms[id].pose;
+        return;
+      }
+  };
+  const auto landmark = [&]() {
+    ObjectLandmark l;
+    l.label = "chair";
+    l.measurements = {f0, r0, f1, r1, r2};
+    l.pose_measurement = f0;
+    l.pose = *ms[f0].pose;
+    return std::vector<ObjectLandmark>{l};
+  };
+  auto lms = landmark();
+  EXPECT_EQ(keep_one_per_keyframe(lms, ms, &views, place), 2);
+  EXPECT_EQ(lms[0].measurements, (std::vector<int>{r0, r1, r2}));
+  EXPECT_EQ(placed_with, lms[0].measurements);
+  EXPECT_EQ(lms[0].pose_measurement, r2);
+  EXPECT_EQ(keep_one_per_keyframe(lms, ms, &views, place), 0);  // nothing left to resolve
+  // Without views: keyframe 0 keeps the pose measurement, keyframe 1 the higher score.
+  lms = landmark();
+  placed_with.clear();
+  EXPECT_EQ(keep_one_per_keyframe(lms, ms, nullptr, place), 2);
+  EXPECT_EQ(lms[0].measurements, (std::vector<int>{f0, f1, r2}));
+  EXPECT_TRUE(placed_with.empty());  // the pose measurement stayed: no new placement
+  EXPECT_EQ(lms[0].pose_measurement, f0);
+}
+
+TEST(Association, OnePerKeyframeKeyLoadsAndABadValueIsNamed) {
+  expect_bool_key_on_loads_and_names_a_bad_value("one_per_keyframe", &AssociationOptions::one_per_keyframe, "1.5");
+}
+
 TEST(Association, DropInsideOtherClassKeyLoadsAndABadValueIsNamed) {
   expect_bool_key_on_loads_and_names_a_bad_value("drop_inside_other_class",
                                                  &AssociationOptions::drop_inside_other_class, "2");
