@@ -263,26 +263,43 @@ int keep_one_per_keyframe(std::vector<ObjectLandmark>& landmarks, const std::vec
   for (ObjectLandmark& l : landmarks) {
     std::map<int, std::vector<int>> by_keyframe;
     for (int id : l.measurements) by_keyframe[ms[id].keyframe].push_back(id);
-    std::set<int> off;
-    for (const auto& [kf, ids] : by_keyframe) {
-      if (ids.size() < 2) continue;
-      std::optional<Eigen::Vector4d> projection;
-      if (views && kf >= 0 && kf < static_cast<int>(views->T_wc.size())) projection = projected_box(l.pose, *views, kf);
-      // Ranked by (IoU with the projection, is the pose measurement, is placed, score).
-      const auto rank = [&](int id) {
-        return std::make_tuple(projection ? box_iou(*projection, ms[id].box) : 0.0, id == l.pose_measurement,
-                               ms[id].pose.has_value(), ms[id].score);
-      };
-      const int keep = *std::max_element(ids.begin(), ids.end(), [&](int a, int b) { return rank(a) < rank(b); });
-      for (int id : ids)
-        if (id != keep) off.insert(id);
-    }
+    // The measurements that leave, judged against the landmark's current projection.
+    const auto losers = [&](const ObjectLandmark& judge) {
+      std::set<int> off;
+      for (const auto& [kf, ids] : by_keyframe) {
+        if (ids.size() < 2) continue;
+        std::optional<Eigen::Vector4d> projection;
+        if (views && kf >= 0 && kf < static_cast<int>(views->T_wc.size()))
+          projection = projected_box(judge.pose, *views, kf);
+        // Ranked by (IoU with the projection, is the pose measurement, is placed, score).
+        const auto rank = [&](int id) {
+          return std::make_tuple(projection ? box_iou(*projection, ms[id].box) : 0.0, id == judge.pose_measurement,
+                                 ms[id].pose.has_value(), ms[id].score);
+        };
+        const int keep = *std::max_element(ids.begin(), ids.end(), [&](int a, int b) { return rank(a) < rank(b); });
+        for (int id : ids)
+          if (id != keep) off.insert(id);
+      }
+      return off;
+    };
+    std::set<int> off = losers(l);
     if (off.empty()) continue;
+    ObjectLandmark kept = l;
+    // A pose measurement that leaves made the projection it was judged by: the landmark is placed
+    // from the others and the keyframes judged again, until its pose measurement stays.
+    for (int round = 0; round < 3 && off.count(kept.pose_measurement); ++round) {
+      kept.measurements.clear();
+      for (int id : l.measurements)
+        if (!off.count(id)) kept.measurements.push_back(id);
+      place(kept);
+      off = losers(kept);
+    }
+    if (off.count(kept.pose_measurement)) continue;  // no stable choice: left as it is
+    kept.measurements.clear();
+    for (int id : l.measurements)
+      if (!off.count(id)) kept.measurements.push_back(id);
     removed += static_cast<int>(off.size());
-    const bool lost_pose = off.count(l.pose_measurement) > 0;
-    l.measurements.erase(std::remove_if(l.measurements.begin(), l.measurements.end(), [&](int id) { return off.count(id) > 0; }),
-                         l.measurements.end());
-    if (lost_pose) place(l);
+    l = std::move(kept);
   }
   return removed;
 }
@@ -613,10 +630,13 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   if (options.association.merge_contained && !hdp_only) merge_contained_landmarks(candidates, place, never_together);
   if (options.association.drop_inside_other_class && !hdp_only)
     drop_landmarks_inside_other_classes(candidates, options.support_classes);
+  // Conflicts are resolved before the projections judge the other keyframes (a landmark placed on
+  // the wrong one of two measurements projects off), and again after them.
+  if (ao.one_per_keyframe) keep_one_per_keyframe(candidates, ms, views, place);
   if (ao.reproject != "none" && views && !hdp_only) {
     reassign_by_projection(candidates, ms, *views, ao.reproject_min_iou, ao.reproject_margin, ao.reproject == "all");
+    if (ao.one_per_keyframe) keep_one_per_keyframe(candidates, ms, views, place);
   }
-  if (ao.one_per_keyframe) keep_one_per_keyframe(candidates, ms, views, place);
   // A landmark whose measurements the projections gave to others, down to its pinned pose
   // measurement (a fragment placed 2 m off), or that kept too few, is no longer reported: its last
   // measurements drop.

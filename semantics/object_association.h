@@ -95,8 +95,10 @@ void reassign_by_projection(std::vector<ObjectLandmark>& landmarks, const std::v
 // group objects, but a landmark merge or an MOT track that switched objects can still bring two
 // together). Per landmark and keyframe the measurement whose box best fits the landmark's
 // projection (IoU; without a projection the pose measurement, then a placed one, then the higher
-// score) stays; the others leave the landmark (reported as dropped). A landmark that loses its pose
-// measurement is placed again by `place`. Returns the number of measurements taken off.
+// score) stays; the others leave the landmark (reported as dropped). When the pose measurement
+// itself leaves, the landmark is placed again by `place` from the others and every keyframe judged
+// again by the new projection (up to 3 times, until the pose measurement stays; a landmark with no
+// stable choice is left as it was). Returns the number of measurements taken off.
 int keep_one_per_keyframe(std::vector<ObjectLandmark>& landmarks, const std::vector<ObjectMeasurement>& ms,
                           const KeyframeViews* views, const std::function<void(ObjectLandmark&)>& place);
 
