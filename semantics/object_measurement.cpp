@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <map>
 
@@ -332,16 +333,40 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
     }
   }
 
-  if (thin && o.thin_height_from_box_rows) {
-    // A thin class's lower part (legs, wheels, a base of spokes) gives few points and its top (a
-    // backrest, a hook) few more: the 5-95 % extent falls short of both ends. Its uncut box rows are
-    // its ends, at the depth of its points.
-    const double d = samples[(begin + end) / 2].z, u = 0.5 * (box(0) + box(2));
-    const auto row_height = [&](double v) { return (T_wc * (cam.unproject(Eigen::Vector2d(u, v)) * d)).dot(z); };
-    if (!cut.top) hi(2) = row_height(box(1));
-    if (!cut.bottom) lo(2) = row_height(box(3));
+  const bool flat = std::min(cs[0], cs[1]) <= o.flat_ratio * std::max(cs[0], cs[1]);
+  // The vertical ends from the box's uncut top and bottom rows: the heights where the rays through
+  // them meet the object (`height_at(row, top)`); a cut end is completed to the class's height.
+  const auto ends_from_rows = [&](const std::function<std::optional<double>(double, bool)>& height_at) {
+    if (!cut.top)
+      if (const auto top = height_at(box(1), true)) hi(2) = *top;
+    if (!cut.bottom)
+      if (const auto bottom = height_at(box(3), false)) lo(2) = *bottom;
     if (cut.bottom) lo(2) = hi(2) - std::max(hi(2) - lo(2), cs[2]);
     if (cut.top) hi(2) = lo(2) + std::max(hi(2) - lo(2), cs[2]);
+  };
+  if (thin && o.thin_height_from_box_rows) {
+    // A thin class's lower part (legs, wheels, a base of spokes) gives few points and its top (a
+    // backrest, a hook) few more: the 5-95 % extent falls short of both ends. Its rows are met at
+    // the depth of its points, at the box's middle column.
+    const double d = samples[(begin + end) / 2].z, u = 0.5 * (box(0) + box(2));
+    ends_from_rows([&](double row, bool) -> std::optional<double> {
+      return (T_wc * (cam.unproject(Eigen::Vector2d(u, row)) * d)).dot(z);
+    });
+  } else if (flat && o.flat_height_from_box_rows) {
+    // A flat class's trimmed rows (box_shrink) span about 60 % of its face (a door). Its top and
+    // bottom rows are those of its nearer end, at the box's left or right edge: the rays through
+    // both edges meet the vertical plane of its points (across its thinner horizontal extent), the
+    // far edge's ray above the top and below the bottom when the face is seen obliquely. The lower
+    // top and the higher bottom are the face's.
+    const int a = hi(0) - lo(0) >= hi(1) - lo(1) ? 0 : 1;
+    const Eigen::Vector3d mid = R * (0.5 * (lo + hi));
+    ends_from_rows([&](double row, bool top) -> std::optional<double> {
+      std::optional<double> h;
+      for (const double col : {box(0), box(2)})
+        if (const auto p = ray_meets_plane(cam, T_wc, Eigen::Vector2d(col, row), mid, R.col(1 - a)))
+          h = !h ? p->dot(z) : top ? std::min(*h, p->dot(z)) : std::max(*h, p->dot(z));
+      return h;
+    });
   } else if (cut.bottom || cut.top) {
     // A box cut at the top or bottom: the sampled vertical extent ends short of the box's uncut edge
     // by the trimmed margin (box_shrink and the 5 % tail, as a share of the sampled extent); from that
@@ -400,7 +425,6 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   // A flat class's face (a door) ends where the rays through the box's left and right edges meet
   // it: the trimmed points' 5-95 % extent falls short of both ends, more at the near end of an
   // oblique face (nearer columns hold more points per metre). A grazing face keeps the points' extent.
-  const bool flat = std::min(cs[0], cs[1]) <= o.flat_ratio * std::max(cs[0], cs[1]);
   if (flat && !side) {
     const int a = hi(0) - lo(0) >= hi(1) - lo(1) ? 0 : 1;
     const Eigen::Vector3d mid = R * (0.5 * (lo + hi));

@@ -58,6 +58,7 @@ struct MeasurementOptions {
   double bottom_cut_reach = 0.1;
   double top_surface_tolerance = 0.1;
   bool thin_height_from_box_rows = true;  // thin classes: vertical ends from the box rows at the points' depth
+  bool flat_height_from_box_rows = true;  // flat classes (doors) too
   double max_size_ratio = 1.6;    // extents beyond this times the class's largest size: wall or floor, no pose
   double min_depth = 0.2, max_depth = 10.0;
   bool complete_depth_with_class_size = true;  // push the centre back when only a front face is seen

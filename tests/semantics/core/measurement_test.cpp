@@ -195,7 +195,9 @@ TEST(Measurement, AxisClassIsPlacedOnItsShaftAboveWhatStandsInFront) {
 
 // A door on a side wall (the plane x = 1 m), seen obliquely down the corridor: it spans z = 3-3.9 m.
 // Its width is the axis closer to the line of sight, yet it is its face normal that hides a depth,
-// and its ends are where the rays through the box's edges meet the face.
+// and its ends are where the rays through the box's edges meet the face. So are its top and foot:
+// the box's rows are those of its near end (z = 3 m), whose edge column meets the face there; the
+// far edge's column meets it beyond both.
 TEST(Measurement, ObliqueFlatFaceIsPlacedBetweenItsBoxEdges) {
   SemanticOptions o;
   const Eigen::Vector3d up(0, -1, 0);
@@ -210,6 +212,17 @@ TEST(Measurement, ObliqueFlatFaceIsPlacedBetweenItsBoxEdges) {
   EXPECT_NEAR(p->pose.translation().z(), 3.45, 0.03);
   EXPECT_NEAR(p->pose.translation().x(), 1.0 + 0.03, 0.02);  // pushed back by half the door's 0.06
   EXPECT_NEAR(p->size.x(), 0.9, 0.05);
+  EXPECT_NEAR(p->size.z(), 2.05, 0.03);                 // top -0.85 to foot 1.2
+  EXPECT_NEAR(p->pose.translation().y(), 0.175, 0.02);  // their middle
+  o.measurement.flat_height_from_box_rows = false;      // the trimmed points' 5-95 %: about half of it
+  const auto points_only = measure_pose_from_depth(d, cam, slam::SE3(), box, up, "door", o);
+  ASSERT_TRUE(points_only);
+  EXPECT_LT(points_only->size.z(), 1.4);
+  EXPECT_FALSE(load_semantic_options(YAML::Load("measurement: {flat_height_from_box_rows: false}"), "s.yaml")
+                   .measurement.flat_height_from_box_rows);
+  test::expect_load_error_names("measurement: {flat_height_from_box_rows: tall}",
+                                "semantics.measurement.flat_height_from_box_rows");
+  o.measurement.flat_height_from_box_rows = true;
   o.measurement.flat_ratio = 0;  // off: the width is taken for the hidden depth
   const auto off = measure_pose_from_depth(d, cam, slam::SE3(), box, up, "door", o);
   ASSERT_TRUE(off);
