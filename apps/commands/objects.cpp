@@ -35,7 +35,7 @@ void require_object_ground_truth(const fs::path& seq) {
 }
 
 struct EvalObjectsArgs {
-  std::string run, sequence, json, align = "se3";
+  std::string run, sequence, json, align = "auto";
 };
 
 void eval_objects(const EvalObjectsArgs& a) {
@@ -45,6 +45,7 @@ void eval_objects(const EvalObjectsArgs& a) {
   require_object_ground_truth(seq);
   // A run of another sequence would be scored against the wrong objects without a word (the synthetic
   // sequences share their timestamps, so the trajectories still pair up).
+  bool monocular = false;
   if (fs::exists(run / "report.json")) {
     std::ifstream in(run / "report.json");
     const json report = json::parse(in, nullptr, false);
@@ -54,14 +55,33 @@ void eval_objects(const EvalObjectsArgs& a) {
         throw InputError((run / "report.json").string(),
                          "the run was made on '" + made_on + "', not on '" + folder_name(seq) + "' (--sequence)");
     }
+    monocular = report.is_object() && report.value("mode", json()) == "mono";
   }
-  // The run's world onto the ground truth's, by the trajectory alignment of EVALUATION.md.
+  // A monocular run's objects are in metres (its metric scale in objects_report.json), its
+  // trajectory.txt in map units: the trajectory is brought to metres before the alignment.
+  double metres_per_map_unit = 1;
+  if (fs::exists(run / "objects_report.json")) {
+    std::ifstream in(run / "objects_report.json");
+    const json report = json::parse(in, nullptr, false);
+    if (report.is_object() && report.contains("monocular_scale")) {
+      const json& s = report["monocular_scale"];
+      if (!s.is_object() || !s.contains("metres_per_map_unit") || !s["metres_per_map_unit"].is_number() ||
+          !(s["metres_per_map_unit"].get<double>() > 0))
+        throw InputError((run / "objects_report.json").string(),
+                         "monocular_scale.metres_per_map_unit is not a positive number: the run placed no objects");
+      metres_per_map_unit = s["metres_per_map_unit"].get<double>();
+    }
+  }
+  // The run's world onto the ground truth's, by the trajectory alignment of EVALUATION.md (auto:
+  // Sim(3) for a monocular run, SE(3) otherwise, as `wardmap run` scores its own).
+  const std::string alignment = a.align != "auto" ? a.align : monocular ? "sim3" : "se3";
   slam::Sim3 align;
-  if (a.align != "none") {
+  if (alignment != "none") {
     auto reader = slam::io::open_sequence(seq);
-    const auto est = slam::io::read_trajectory(run / "trajectory.txt");
+    auto est = slam::io::read_trajectory(run / "trajectory.txt");
+    for (auto& T : est.poses) T = slam::SE3(T.rotation(), T.translation() * metres_per_map_unit);
     const auto pairs = slam::eval::associate(reader->ground_truth(), est, {});
-    align = slam::eval::compute_ate(reader->ground_truth(), est, pairs, slam::eval::parse_alignment(a.align)).transform;
+    align = slam::eval::compute_ate(reader->ground_truth(), est, pairs, slam::eval::parse_alignment(alignment)).transform;
   }
   std::vector<semantics::TrueObject> landmarks = semantics::read_objects_json(run / "objects.json");
   const auto e = semantics::evaluate_objects(semantics::read_measurements_jsonl(run / "measurements.jsonl"), landmarks,
@@ -123,9 +143,11 @@ void add_eval_objects_command(CLI::App& app) {
                                  "association accuracy, object count, landmark position error, MOT ID switches");
   cmd->add_option("--run", a->run, "Run folder written by wardmap run")->required();
   cmd->add_option("--sequence", a->sequence, "The synthetic sequence the run was made on")->required();
-  cmd->add_option("--align", a->align, "Trajectory alignment applied to the landmarks: se3, sim3 or none")
+  cmd->add_option("--align", a->align,
+                  "Trajectory alignment applied to the landmarks: se3, sim3, none, or auto (sim3 for a monocular\n"
+                  "run, whose trajectory is first brought to metres by its objects' metric scale; se3 otherwise)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"se3", "sim3", "none"}));
+      ->check(CLI::IsMember({"auto", "se3", "sim3", "none"}));
   cmd->add_option("--json", a->json, "Also write the figures as JSON");
   cmd->callback([a] { eval_objects(*a); });
 }

@@ -286,6 +286,15 @@ TEST(CliPipeline, MonocularObjectsAreMeasuredOnMapPointsAtAMetricScale) {
   EXPECT_GE(objects.at("objects_mapped").get<int>(), 3) << objects.dump();
   EXPECT_LT(objects.at("position_error_mean").get<double>(), 0.6) << objects.dump();
   EXPECT_GT(objects.at("association_accuracy").get<double>(), 70.0) << objects.dump();
+  // eval-objects scores the folder as the run did: its trajectory.txt is in map units, its objects
+  // in metres (it used to align the two as they were: several metres of position error).
+  const CliResult eval = wardmap_cli("-q eval-objects --run " + shq(dir / "run") + " --sequence " + shq(dir / "seq") +
+                                     " --json " + shq(dir / "eval.json"));
+  ASSERT_EQ(eval.code, 0) << eval.output;
+  const auto figures = nlohmann::json::parse(read_all(dir / "eval.json"));
+  EXPECT_NEAR(figures.at("position_error_mean").get<double>(), objects.at("position_error_mean").get<double>(), 1e-6)
+      << eval.output;
+  EXPECT_NEAR(figures.at("association_accuracy").get<double>(), objects.at("association_accuracy").get<double>(), 1e-9);
 }
 
 // RGB-D with the mapper on its own thread (the default), twice: both accurate.
@@ -381,6 +390,8 @@ TEST(CliObjects, EvalObjectsAndCompare) {
               report.at("objects").at("association_accuracy").get<double>(), 1e-9);
   EXPECT_EQ(figures.at("landmarks"), report.at("objects").at("landmarks"));
   EXPECT_GT(figures.at("landmarks").get<int>(), 0);
+  EXPECT_NEAR(figures.at("position_error_mean").get<double>(),
+              report.at("objects").at("position_error_mean").get<double>(), 1e-6);
 
   ASSERT_EQ(wardmap_cli("-q synth --scenario aisle_straight --variant slow --frames 30 --out " + shq(dir / "aisle")).code, 0);
   expect_one_line_error(wardmap_cli("-q eval-objects --run " + shq(dir / "run") + " --sequence " + shq(dir / "aisle")),
