@@ -291,6 +291,8 @@ int keep_one_per_keyframe(std::vector<ObjectLandmark>& landmarks, const std::vec
       kept.measurements.clear();
       for (int id : l.measurements)
         if (!off.count(id)) kept.measurements.push_back(id);
+      if (std::none_of(kept.measurements.begin(), kept.measurements.end(), [&](int id) { return ms[id].pose.has_value(); }))
+        break;  // nothing left to place it by
       place(kept);
       off = losers(kept);
     }

@@ -358,13 +358,17 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
     // both edges meet the vertical plane of its points (across its thinner horizontal extent), the
     // far edge's ray above the top and below the bottom when the face is seen obliquely. The lower
     // top and the higher bottom are the face's.
+    // An end inside the points' extent, or one past 1.25 class heights from it (a ray grazing the
+    // face), keeps the points' end.
     const int a = hi(0) - lo(0) >= hi(1) - lo(1) ? 0 : 1;
     const Eigen::Vector3d mid = R * (0.5 * (lo + hi));
+    const double points_lo = lo(2), points_hi = hi(2), reach = 1.25 * cs[2];
     ends_from_rows([&](double row, bool top) -> std::optional<double> {
       std::optional<double> h;
       for (const double col : {box(0), box(2)})
         if (const auto p = ray_meets_plane(cam, T_wc, Eigen::Vector2d(col, row), mid, R.col(1 - a)))
           h = !h ? p->dot(z) : top ? std::min(*h, p->dot(z)) : std::max(*h, p->dot(z));
+      if (h && (top ? *h < points_hi || *h > points_lo + reach : *h > points_lo || *h < points_hi - reach)) h.reset();
       return h;
     });
   } else if (cut.bottom || cut.top) {
