@@ -285,21 +285,22 @@ int keep_one_per_keyframe(std::vector<ObjectLandmark>& landmarks, const std::vec
     std::set<int> off = losers(l);
     if (off.empty()) continue;
     ObjectLandmark kept = l;
-    // A pose measurement that leaves made the projection it was judged by: the landmark is placed
-    // from the others and the keyframes judged again, until its pose measurement stays.
-    for (int round = 0; round < 3 && off.count(kept.pose_measurement); ++round) {
+    const auto keep_all_but_off = [&]() {
       kept.measurements.clear();
       for (int id : l.measurements)
         if (!off.count(id)) kept.measurements.push_back(id);
+    };
+    // A pose measurement that leaves made the projection it was judged by: the landmark is placed
+    // from the others and the keyframes judged again, until its pose measurement stays.
+    for (int round = 0; round < 3 && off.count(kept.pose_measurement); ++round) {
+      keep_all_but_off();
       if (std::none_of(kept.measurements.begin(), kept.measurements.end(), [&](int id) { return ms[id].pose.has_value(); }))
         break;  // nothing left to place it by
       place(kept);
       off = losers(kept);
     }
     if (off.count(kept.pose_measurement)) continue;  // no stable choice: left as it is
-    kept.measurements.clear();
-    for (int id : l.measurements)
-      if (!off.count(id)) kept.measurements.push_back(id);
+    keep_all_but_off();
     removed += static_cast<int>(off.size());
     l = std::move(kept);
   }

@@ -334,6 +334,8 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   }
 
   const bool flat = std::min(cs[0], cs[1]) <= o.flat_ratio * std::max(cs[0], cs[1]);
+  // A flat class's face runs along its larger horizontal extent.
+  const auto face_axis = [&]() { return hi(0) - lo(0) >= hi(1) - lo(1) ? 0 : 1; };
   // The vertical ends from the box's uncut top and bottom rows: the heights where the rays through
   // them meet the object (`height_at(row, top)`); a cut end is completed to the class's height.
   const auto ends_from_rows = [&](const std::function<std::optional<double>(double, bool)>& height_at) {
@@ -360,7 +362,7 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
     // top and the higher bottom are the face's.
     // An end inside the points' extent, or one past 1.25 class heights from it (a ray grazing the
     // face), keeps the points' end.
-    const int a = hi(0) - lo(0) >= hi(1) - lo(1) ? 0 : 1;
+    const int a = face_axis();
     const Eigen::Vector3d mid = R * (0.5 * (lo + hi));
     const double points_lo = lo(2), points_hi = hi(2), reach = 1.25 * cs[2];
     ends_from_rows([&](double row, bool top) -> std::optional<double> {
@@ -430,7 +432,7 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   // it: the trimmed points' 5-95 % extent falls short of both ends, more at the near end of an
   // oblique face (nearer columns hold more points per metre). A grazing face keeps the points' extent.
   if (flat && !side) {
-    const int a = hi(0) - lo(0) >= hi(1) - lo(1) ? 0 : 1;
+    const int a = face_axis();
     const Eigen::Vector3d mid = R * (0.5 * (lo + hi));
     const double row = cam.project(T_wc.inverse() * mid).y();
     const auto e0 = ray_meets_plane(cam, T_wc, Eigen::Vector2d(box(0), row), mid, R.col(1 - a));

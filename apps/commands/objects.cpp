@@ -29,6 +29,14 @@ std::string folder_name(const fs::path& path) {
   return (p.has_filename() ? p.filename() : p.parent_path().filename()).string();
 }
 
+// A report a run folder holds, or null when it has none (an unparsable one counts as none).
+json read_report(const fs::path& file) {
+  if (!fs::exists(file)) return json();
+  std::ifstream in(file);
+  json report = json::parse(in, nullptr, false);
+  return report.is_object() ? report : json();
+}
+
 void require_object_ground_truth(const fs::path& seq) {
   for (const char* f : {"objects.json", "annotations.jsonl"})
     if (!fs::exists(seq / f)) throw InputError((seq / f).string(), "not found: object ground truth comes from wardmap synth sequences");
@@ -45,32 +53,25 @@ void eval_objects(const EvalObjectsArgs& a) {
   require_object_ground_truth(seq);
   // A run of another sequence would be scored against the wrong objects without a word (the synthetic
   // sequences share their timestamps, so the trajectories still pair up).
-  bool monocular = false;
-  if (fs::exists(run / "report.json")) {
-    std::ifstream in(run / "report.json");
-    const json report = json::parse(in, nullptr, false);
-    if (report.is_object() && report.contains("sequence") && report["sequence"].is_string()) {
-      const std::string made_on = folder_name(report["sequence"].get<std::string>());
-      if (made_on != folder_name(seq))
-        throw InputError((run / "report.json").string(),
-                         "the run was made on '" + made_on + "', not on '" + folder_name(seq) + "' (--sequence)");
-    }
-    monocular = report.is_object() && report.value("mode", json()) == "mono";
+  const json report = read_report(run / "report.json");
+  if (report.contains("sequence") && report["sequence"].is_string()) {
+    const std::string made_on = folder_name(report["sequence"].get<std::string>());
+    if (made_on != folder_name(seq))
+      throw InputError((run / "report.json").string(),
+                       "the run was made on '" + made_on + "', not on '" + folder_name(seq) + "' (--sequence)");
   }
+  const bool monocular = report.is_object() && report.value("mode", json()) == "mono";
   // A monocular run's objects are in metres (its metric scale in objects_report.json), its
   // trajectory.txt in map units: the trajectory is brought to metres before the alignment.
   double metres_per_map_unit = 1;
-  if (fs::exists(run / "objects_report.json")) {
-    std::ifstream in(run / "objects_report.json");
-    const json report = json::parse(in, nullptr, false);
-    if (report.is_object() && report.contains("monocular_scale")) {
-      const json& s = report["monocular_scale"];
-      if (!s.is_object() || !s.contains("metres_per_map_unit") || !s["metres_per_map_unit"].is_number() ||
-          !(s["metres_per_map_unit"].get<double>() > 0))
-        throw InputError((run / "objects_report.json").string(),
-                         "monocular_scale.metres_per_map_unit is not a positive number: the run placed no objects");
-      metres_per_map_unit = s["metres_per_map_unit"].get<double>();
-    }
+  const json objects_report = read_report(run / "objects_report.json");
+  if (objects_report.contains("monocular_scale")) {
+    const json& s = objects_report["monocular_scale"];
+    if (!s.is_object() || !s.contains("metres_per_map_unit") || !s["metres_per_map_unit"].is_number() ||
+        !(s["metres_per_map_unit"].get<double>() > 0))
+      throw InputError((run / "objects_report.json").string(),
+                       "monocular_scale.metres_per_map_unit is not a positive number: the run placed no objects");
+    metres_per_map_unit = s["metres_per_map_unit"].get<double>();
   }
   // The run's world onto the ground truth's, by the trajectory alignment of EVALUATION.md (auto:
   // Sim(3) for a monocular run, SE(3) otherwise, as `wardmap run` scores its own).
