@@ -80,12 +80,16 @@ struct OccluderMask {
 };
 
 std::vector<OccluderMask> occluder_masks(const std::vector<Occluder>& occluders, double inflate,
-                                        const slam::SE3& T_wc, const std::string& far_end) {
+                                        const slam::SE3& T_wc, const std::string& far_end, bool box_mask_to_far_end) {
   std::vector<OccluderMask> masks;
   for (const auto& o : occluders) {
-    OccluderMask m{o.box, !o.pose, {}, Eigen::Vector3d::Zero()};
-    if (o.pose) m.world_to_box = o.pose->pose.inverse(), m.half_size = 0.5 * o.pose->size.array() + inflate;
-    if (o.pose && (far_end == "all" || (far_end == "same_class" && o.same_class))) {
+    // A box-masked class (a pole, a wheelchair: an open frame) hides its whole image box, or with
+    // box_mask_to_far_end and a pose, its image box up to its far end: what stands behind it shows
+    // between its spokes and beside its shaft.
+    const bool to_far_end = o.pose && (!o.box_masked || box_mask_to_far_end);
+    OccluderMask m{o.box, !to_far_end, {}, Eigen::Vector3d::Zero()};
+    if (to_far_end) m.world_to_box = o.pose->pose.inverse(), m.half_size = 0.5 * o.pose->size.array() + inflate;
+    if (to_far_end && (o.box_masked || far_end == "all" || (far_end == "same_class" && o.same_class))) {
       // The deepest corner: the centre's depth plus each half axis's reach along the optical axis.
       const slam::SE3 T_cb = T_wc.inverse() * o.pose->pose;
       m.far_depth = T_cb.translation().z() + T_cb.rotation_matrix().row(2).cwiseAbs().dot(m.half_size);
@@ -216,7 +220,8 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   cut.left = box(0) <= m, cut.top = box(1) <= m;
   cut.right = box(2) >= depth.cols - 1 - m, cut.bottom = box(3) >= depth.rows - 1 - m;
   // Hidden at the bottom by a nearer detection: completed as a bottom cut is.
-  const std::vector<OccluderMask> masks = occluder_masks(occluders, o.occluder_inflate, T_wc, o.mask_to_far_end);
+  const std::vector<OccluderMask> masks =
+      occluder_masks(occluders, o.occluder_inflate, T_wc, o.mask_to_far_end, o.box_mask_to_far_end);
   if (sized && o.occluded_bottom_share <= 1 && bottom_occluded(depth, cam, T_wc, box, masks, o.occluded_bottom_share))
     cut.bottom = true;
   const bool completes = sized && o.complete_depth_with_class_size;
@@ -568,8 +573,8 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
         if (!done[i] && (next < 0 || z[i] < z[next])) next = static_cast<int>(i);
     std::vector<Occluder> occluders;
     for (int j : nearer[next])
-      occluders.push_back({boxes[j], done[j] && !options.box_masked_classes.count(labels[j]) ? poses[j] : std::nullopt,
-                           labels[j] == labels[next]});
+      occluders.push_back({boxes[j], done[j] ? poses[j] : std::nullopt, labels[j] == labels[next],
+                           options.box_masked_classes.count(labels[j]) > 0});
     poses[next] = measure_pose_from_depth(depth, camera, T_wc, boxes[next], up, labels[next], options, occluders);
     done[next] = true;
   }

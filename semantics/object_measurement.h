@@ -36,13 +36,15 @@ struct ObjectMeasurement {
 // A nearer detection of the same keyframe whose box overlaps the one being measured. Its pixels
 // are left out: those whose 3-D point falls inside its measured box (inflated by
 // occluder_inflate) when it has a pose, else every pixel of its image box (also for the
-// box_masked_classes, whose measured box misses much of their frame). With
-// measurement.mask_to_far_end, also every pixel of its image box no deeper than the far end of its
-// inflated 3-D box (the parts its measurement missed).
+// box_masked_classes, whose measured box misses much of their frame: with
+// measurement.box_mask_to_far_end and a pose, only the pixels of their image box no deeper than the
+// far end of their inflated 3-D box). With measurement.mask_to_far_end, also every pixel of its
+// image box no deeper than that far end (the parts its measurement missed).
 struct Occluder {
   Eigen::Vector4d box = Eigen::Vector4d::Zero();
   std::optional<ObjectPose> pose;
   bool same_class = false;  // of the measured detection's class (measurement.mask_to_far_end)
+  bool box_masked = false;  // of a box_masked_classes class
 };
 
 // Assoc. Eq. 1 "Pose": the object's pose and size from the depth inside its box. Points are taken

@@ -139,6 +139,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   mk.read("tall_depth_ratio", o.measurement.tall_depth_ratio);
   mk.read("ambiguous_pair_iou", o.measurement.ambiguous_pair_iou);
   mk.read("mask_to_far_end", o.measurement.mask_to_far_end);
+  mk.read("box_mask_to_far_end", o.measurement.box_mask_to_far_end);
   gk.read("size", o.groups.size);
   gk.read("overlap", o.groups.overlap);
   ak.read("mode", o.association.mode);

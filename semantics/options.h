@@ -91,6 +91,9 @@ struct MeasurementOptions {
   // Inside a measured occluder's image box, also hide every pixel no deeper than the far end of its
   // inflated 3-D box: "none", "same_class" (occluders of the measured detection's class) or "all".
   std::string mask_to_far_end = "none";
+  // A measured occluder of a box_masked_classes class (an open frame: a pole, a wheelchair) hides
+  // its image box only up to the far end of its inflated 3-D box, instead of the whole box.
+  bool box_mask_to_far_end = true;
 };
 
 // Keyframe groups (Assoc. III-A.1): M adjacent keyframes, j shared with the next group. The paper

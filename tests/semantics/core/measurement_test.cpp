@@ -290,6 +290,46 @@ TEST(Measurement, FarEndMaskKeyLoadsAndABadValueIsNamed) {
   test::expect_load_error_names("measurement: {mask_to_far_end: near}", "semantics.measurement.mask_to_far_end");
 }
 
+// A pole (a box-masked class: an open frame) stands in front of a cabinet, its shaft at 2.5 m and
+// its image box (spokes, hook) over the cabinet's right half. With box_mask_to_far_end the cabinet
+// shows between the spokes and beside the shaft and is measured on its whole face; otherwise the
+// pole's whole image box hides that half.
+TEST(Measurement, BoxMaskedOccluderHidesItsBoxOnlyUpToItsFarEnd) {
+  SemanticOptions o;
+  const Eigen::Vector3d up(0, -1, 0);
+  // Wall at 8 m; cabinet face at 4 m over [200, 440) x [200, 320) (x -0.96 to 0.96 m); the shaft at
+  // 2.5 m over [364, 376).
+  cv::Mat d = scene(8.0, 4.0, 200, 440, 200, 320);
+  d(cv::Rect(364, 100, 12, 300)).setTo(2.5);
+  const Eigen::Vector4d cabinet_box(200, 200, 440, 320), pole_box(300, 100, 440, 400);
+  // The pole as measured: its axis at the shaft (x = 0.4 m), 0.5 m wide and deep, so its inflated
+  // box ends at 3.05 m.
+  const ObjectPose pole{slam::SE3(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.4, 0, 2.5)), Eigen::Vector3d(0.5, 1.8, 0.5)};
+  const auto measured = [&](bool to_far_end) {
+    o.measurement.box_mask_to_far_end = to_far_end;
+    return measure_pose_from_depth(d, camera(), slam::SE3(), cabinet_box, up, "cabinet", o,
+                                   {Occluder{pole_box, pole, false, true}});
+  };
+  const auto whole_face = measured(true);
+  ASSERT_TRUE(whole_face);
+  EXPECT_NEAR(whole_face->pose.translation().x(), 0.0, 0.05);
+  EXPECT_NEAR(whole_face->pose.translation().z(), 4.0 + 0.225, 0.05);
+  // Only the columns left of the pole's box (u < 300) are left: the centre moves left.
+  const auto left_part = measured(false);
+  ASSERT_TRUE(left_part);
+  EXPECT_LT(left_part->pose.translation().x(), -0.3);
+  // Unmeasured, the pole hides its whole image box either way.
+  o.measurement.box_mask_to_far_end = true;
+  const auto unmeasured = measure_pose_from_depth(d, camera(), slam::SE3(), cabinet_box, up, "cabinet", o,
+                                                  {Occluder{pole_box, std::nullopt, false, true}});
+  ASSERT_TRUE(unmeasured);
+  EXPECT_LT(unmeasured->pose.translation().x(), -0.3);
+  EXPECT_TRUE(SemanticOptions().measurement.box_mask_to_far_end);
+  EXPECT_FALSE(load_semantic_options(YAML::Load("measurement: {box_mask_to_far_end: false}"), "s.yaml")
+                   .measurement.box_mask_to_far_end);
+  test::expect_load_error_names("measurement: {box_mask_to_far_end: far}", "semantics.measurement.box_mask_to_far_end");
+}
+
 // A door cut by the image's bottom border is completed from its class height: its top is real, the
 // rest comes from the door's 2.05 m.
 TEST(Measurement, BottomCutBoxIsCompletedFromTheClassHeight) {
