@@ -477,7 +477,7 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
     // A thin class is measured on its nearest surface only (a chair's seat edge and front legs): its
     // seen width and height fall short of the object's. The centre stays; the box gets the class's
     // size at least, so that the map shows a chair, not a slab.
-    if (thin) {
+    if (thin || (o.solid_class_size_floor && !flat)) {
       const double width = expected == cs[0] ? cs[1] : cs[0];
       size(1 - k) = std::max(size(1 - k), width);
       size(2) = std::max(size(2), cs[2]);

@@ -122,6 +122,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   mk.read("bottom_face_min_length", o.measurement.bottom_face_min_length);
   mk.read("top_surface_tolerance", o.measurement.top_surface_tolerance);
   mk.read("thin_height_from_box_rows", o.measurement.thin_height_from_box_rows);
+  mk.read("solid_class_size_floor", o.measurement.solid_class_size_floor);
   mk.read("flat_height_from_box_rows", o.measurement.flat_height_from_box_rows);
   mk.read("min_depth", o.measurement.min_depth);
   mk.read("max_depth", o.measurement.max_depth);

@@ -58,6 +58,9 @@ struct MeasurementOptions {
   double bottom_cut_reach = 0.1;
   double top_surface_tolerance = 0.1;
   bool thin_height_from_box_rows = true;  // thin classes: vertical ends from the box rows at the points' depth
+  // Other classes that are not flat (a bed, a cabinet) get their class's seen width and height at
+  // least too: their trimmed points (box_shrink) span about 60 % of what the box shows.
+  bool solid_class_size_floor = true;
   bool flat_height_from_box_rows = true;  // flat classes (doors) too
   double max_size_ratio = 1.6;    // extents beyond this times the class's largest size: wall or floor, no pose
   double min_depth = 0.2, max_depth = 10.0;

@@ -31,10 +31,28 @@ TEST(Measurement, PlacesTheFrontFaceAndCompletesItsDepth) {
   EXPECT_NEAR(p->pose.translation().x(), 0.0, 0.03);
   EXPECT_NEAR(p->pose.translation().y(), 0.0, 0.03);
   EXPECT_NEAR(p->pose.translation().z(), 3.0 + 0.225, 0.03);
-  // Height: the 5-95 % extent of the trimmed face (1.2 m less 2 x 20 %, less the 10 % tails).
-  EXPECT_NEAR(p->size.z(), 1.2 * 0.6 * 0.9, 0.05);
   // Up of the object is the world's up.
   EXPECT_NEAR(p->pose.rotation_matrix().col(2).dot(up), 1.0, 1e-9);
+  // Height: the 5-95 % extent of the trimmed face (1.2 m less 2 x 20 %, less the 10 % tails), 0.65 m,
+  // less than the cabinet's 0.8 m: the box gets the class's height and width at least
+  // (solid_class_size_floor), the centre stays.
+  EXPECT_NEAR(p->size.z(), 0.8, 1e-9);
+  EXPECT_NEAR(p->size.x(), 1.2 * 0.6 * 0.9, 0.05);  // wider than the cabinet's 0.45 m
+  o.measurement.solid_class_size_floor = false;
+  const auto seen = measure_pose_from_depth(d, camera(), T, Eigen::Vector4d(220, 140, 420, 340), up, "cabinet", o);
+  ASSERT_TRUE(seen);
+  EXPECT_NEAR(seen->size.z(), 1.2 * 0.6 * 0.9, 0.05);
+  EXPECT_NEAR((seen->pose.translation() - p->pose.translation()).norm(), 0.0, 1e-9);
+  // A narrower face than the class's gets the class's width.
+  const cv::Mat narrow = scene(6.0, 3.0, 300, 340, 140, 340);  // 0.24 m wide
+  o.measurement.solid_class_size_floor = true;
+  const auto slim = measure_pose_from_depth(narrow, camera(), T, Eigen::Vector4d(300, 140, 340, 340), up, "cabinet", o);
+  ASSERT_TRUE(slim);
+  EXPECT_NEAR(slim->size.x(), 0.45, 1e-9);
+  EXPECT_TRUE(SemanticOptions().measurement.solid_class_size_floor);
+  EXPECT_FALSE(load_semantic_options(YAML::Load("measurement: {solid_class_size_floor: false}"), "s.yaml")
+                   .measurement.solid_class_size_floor);
+  test::expect_load_error_names("measurement: {solid_class_size_floor: wide}", "semantics.measurement.solid_class_size_floor");
 }
 
 TEST(Measurement, NoPoseForDegenerateInput) {
