@@ -124,6 +124,24 @@ std::optional<Eigen::Vector3d> ray_meets_plane(const slam::PinholeCamera& cam, c
   return Eigen::Vector3d(T_wc.translation() + t * ray);
 }
 
+// The floor's height (along `up`) just below a box: the median height of the pixels 3-8 rows under
+// its bottom edge, columns x0..x1, when they agree within `spread` (their 10-90 % range); none when
+// the image ends there or something other than a floor lies there.
+std::optional<double> floor_below_box(const cv::Mat& depth, const slam::PinholeCamera& cam, const slam::SE3& T_wc,
+                                      const Eigen::Vector4d& box, int x0, int x1, const Eigen::Vector3d& up,
+                                      double spread) {
+  std::vector<double> hs;
+  const int step = std::max(1, (x1 - x0) / 40);
+  for (int y = static_cast<int>(box(3)) + 3; y <= static_cast<int>(box(3)) + 8 && y < depth.rows; ++y)
+    for (int x = x0; x <= x1; x += step) {
+      const double z = depth.at<float>(y, x);
+      if (z > 0) hs.push_back((T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z)).dot(up));
+    }
+  if (hs.size() < 10) return std::nullopt;
+  if (percentile(hs, 0.9) - percentile(hs, 0.1) > spread) return std::nullopt;
+  return percentile(hs, 0.5);
+}
+
 // Which image borders the box touches.
 struct BorderCut {
   bool left = false, right = false, top = false, bottom = false;
@@ -469,7 +487,19 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
     // Anchor on the front surface (the extent end facing the camera): what lies behind it in the
     // box may be the object's back or the wall it stands against.
     const double sign = view.dot(R.col(k)) >= 0 ? 1.0 : -1.0;
-    const double front = sign > 0 ? lo(k) : hi(k);
+    double front = sign > 0 ? lo(k) : hi(k);
+    // A class whose nearest parts stand low (a wheelchair's footrests and casters) shows them only in
+    // the bottom rows that box_shrink trims off: its front is where the ray through the box's bottom
+    // row meets the floor just below the box, when that lies nearer than the points' front, by less
+    // than the class's depth.
+    if (o.front_from_foot && options.foot_front_classes.count(label) && !cut.bottom && cut_axis < 0)
+      if (const auto floor = floor_below_box(depth, cam, T_wc, box, x0, x1, z, o.floor_spread)) {
+        const Eigen::Vector2d foot_pixel(0.5 * (box(0) + box(2)), box(3));
+        if (const auto foot = ray_meets_plane(cam, T_wc, foot_pixel, *floor * z, z)) {
+          const double f = foot->dot(R.col(k));
+          if (sign * (front - f) > 0 && sign * (front - f) < expected) front = f;
+        }
+      }
     // An axis class's points are mostly its shaft: their median depth along k is the axis.
     const double along = axis ? percentile(ax[k], 0.5) : front + sign * 0.5 * expected;
     centre += (along - centre.dot(R.col(k))) * R.col(k);

@@ -97,6 +97,10 @@ struct MeasurementOptions {
   // A measured occluder of a box_masked_classes class (an open frame: a pole, a wheelchair) hides
   // its image box only up to the far end of its inflated 3-D box, instead of the whole box.
   bool box_mask_to_far_end = true;
+  // The front of a foot_front_classes class from the ray through its box's bottom row and the floor
+  // just below the box (the pixels there agreeing on a height within floor_spread, m).
+  bool front_from_foot = true;
+  double floor_spread = 0.05;
 };
 
 // Keyframe groups (Assoc. III-A.1): M adjacent keyframes, j shared with the next group. The paper
@@ -257,10 +261,14 @@ struct SemanticOptions {
   // spoked base, so the nearest surface is the axis, not a face half the class's depth in front of
   // the centre (anchored on a face, the synthetic iv poles were placed 0.23 m too far: every one).
   std::set<std::string> axis_classes = {"iv_pole"};
-  // Occluders of these classes hide their whole image box from the detections behind them, not only
+  // Occluders of these classes hide more of their image box from the detections behind them than
   // the pixels inside their measured 3-D box: that box misses much of their spread-out frame (a
-  // wheelchair's left pixels of itself to be measured as the cabinet behind it).
+  // wheelchair's left pixels of itself to be measured as the cabinet behind it). Measured, they hide
+  // it up to their far end (measurement.box_mask_to_far_end); unmeasured, all of it.
   std::set<std::string> box_masked_classes = {"iv_pole", "wheelchair"};
+  // Classes whose nearest parts stand low, in the rows box_shrink trims (a wheelchair's footrests and
+  // casters): with measurement.front_from_foot their front is where the box's bottom row meets the floor.
+  std::set<std::string> foot_front_classes = {"wheelchair"};
   // Classes other objects stand on (their boxes hold the boxes of what is on them).
   std::set<std::string> support_classes = {"table", "bed", "desk", "counter", "bench"};
 

@@ -348,6 +348,43 @@ TEST(Measurement, BoxMaskedOccluderHidesItsBoxOnlyUpToItsFarEnd) {
   test::expect_load_error_names("measurement: {box_mask_to_far_end: far}", "semantics.measurement.box_mask_to_far_end");
 }
 
+// A wheelchair seen from the front: its seat and armrests a face at 4 m, 0.3-0.9 m below the camera;
+// its footplate 0.4 m nearer, on the floor 1.2 m below the camera, in the rows box_shrink trims. With
+// front_from_foot its front is where the box's bottom row meets the floor below the box.
+TEST(Measurement, FrontFromTheFootOfALowFrontedClass) {
+  SemanticOptions o;
+  const Eigen::Vector3d up(0, -1, 0);
+  const double f = 500, floor = 1.2;
+  cv::Mat d(480, 640, CV_32F, cv::Scalar(8.0f));
+  for (int v = 0; v < 480; ++v)
+    for (int u = 0; u < 640; ++u) {
+      const double a = (u - 319.5) / f, b = (v - 239.5) / f;
+      if (b > 0 && floor / b < 8) d.at<float>(v, u) = static_cast<float>(floor / b);
+      if (b * 4.0 >= 0.3 && b * 4.0 <= 0.9 && std::abs(a * 4.0) <= 0.3) d.at<float>(v, u) = 4.0f;
+      if (b * 3.6 >= 1.0 && b * 3.6 <= floor && std::abs(a * 3.6) <= 0.2) d.at<float>(v, u) = 3.6f;
+    }
+  const Eigen::Vector4d box(282, 277, 357, 406);  // bottom: the footplate's foot, 239.5 + 500 * 1.2 / 3.6
+  const auto centre_z = [&]() {
+    const auto p = measure_pose_from_depth(d, camera(), slam::SE3(), box, up, "wheelchair", o);
+    return p ? p->pose.translation().z() : -1.0;
+  };
+  // The wheelchair's 1 m depth behind its front: 3.6 + 0.5 from the foot, 4.0 + 0.5 from the points.
+  EXPECT_NEAR(centre_z(), 4.1, 0.03);
+  o.measurement.front_from_foot = false;
+  EXPECT_NEAR(centre_z(), 4.5, 0.03);
+  // Not a floor below the box (something 0.2 m above it on its left half): the points' front.
+  o.measurement.front_from_foot = true;
+  d(cv::Rect(200, 409, 120, 20)).setTo(2.9f);
+  EXPECT_NEAR(centre_z(), 4.5, 0.03);
+  // Other classes keep the points' front.
+  EXPECT_TRUE(SemanticOptions().foot_front_classes.count("wheelchair"));
+  EXPECT_FALSE(SemanticOptions().foot_front_classes.count("chair"));
+  const auto loaded = load_semantic_options(YAML::Load("measurement: {front_from_foot: false, floor_spread: 0.1}"), "s.yaml");
+  EXPECT_FALSE(loaded.measurement.front_from_foot);
+  EXPECT_DOUBLE_EQ(loaded.measurement.floor_spread, 0.1);
+  test::expect_load_error_names("measurement: {floor_spread: -1}", "semantics.measurement.floor_spread");
+}
+
 // A door cut by the image's bottom border is completed from its class height: its top is real, the
 // rest comes from the door's 2.05 m.
 TEST(Measurement, BottomCutBoxIsCompletedFromTheClassHeight) {
