@@ -12,6 +12,15 @@ namespace {
 
 slam::PinholeCamera camera() { return test::vga_camera(); }
 
+// A measurement switch that is on by default loads off from YAML, and a value that is not a boolean
+// is named in the error.
+template <typename Get>
+void expect_switch_on_by_default(const std::string& key, Get get) {
+  EXPECT_TRUE(get(SemanticOptions()));
+  EXPECT_FALSE(get(load_semantic_options(YAML::Load("measurement: {" + key + ": false}"), "s.yaml")));
+  test::expect_load_error_names("measurement: {" + key + ": sideways}", "semantics.measurement." + key);
+}
+
 // Depth of a scene: a wall at z = wall, and an axis-aligned box face (front at z = front) covering
 // pixels [x0, x1) x [y0, y1). Camera at the origin looking along +z (y down), world = camera frame.
 cv::Mat scene(double wall, double front, int x0, int x1, int y0, int y1) {
@@ -49,10 +58,8 @@ TEST(Measurement, PlacesTheFrontFaceAndCompletesItsDepth) {
   const auto slim = measure_pose_from_depth(narrow, camera(), T, Eigen::Vector4d(300, 140, 340, 340), up, "cabinet", o);
   ASSERT_TRUE(slim);
   EXPECT_NEAR(slim->size.x(), 0.45, 1e-9);
-  EXPECT_TRUE(SemanticOptions().measurement.solid_class_size_floor);
-  EXPECT_FALSE(load_semantic_options(YAML::Load("measurement: {solid_class_size_floor: false}"), "s.yaml")
-                   .measurement.solid_class_size_floor);
-  test::expect_load_error_names("measurement: {solid_class_size_floor: wide}", "semantics.measurement.solid_class_size_floor");
+  expect_switch_on_by_default("solid_class_size_floor",
+                              [](const SemanticOptions& s) { return s.measurement.solid_class_size_floor; });
 }
 
 TEST(Measurement, NoPoseForDegenerateInput) {
@@ -342,10 +349,8 @@ TEST(Measurement, BoxMaskedOccluderHidesItsBoxOnlyUpToItsFarEnd) {
                                                   {Occluder{pole_box, std::nullopt, false, true}});
   ASSERT_TRUE(unmeasured);
   EXPECT_LT(unmeasured->pose.translation().x(), -0.3);
-  EXPECT_TRUE(SemanticOptions().measurement.box_mask_to_far_end);
-  EXPECT_FALSE(load_semantic_options(YAML::Load("measurement: {box_mask_to_far_end: false}"), "s.yaml")
-                   .measurement.box_mask_to_far_end);
-  test::expect_load_error_names("measurement: {box_mask_to_far_end: far}", "semantics.measurement.box_mask_to_far_end");
+  expect_switch_on_by_default("box_mask_to_far_end",
+                              [](const SemanticOptions& s) { return s.measurement.box_mask_to_far_end; });
 }
 
 // A wheelchair seen from the front: its seat and armrests a face at 4 m, 0.3-0.9 m below the camera;
@@ -379,9 +384,9 @@ TEST(Measurement, FrontFromTheFootOfALowFrontedClass) {
   // Other classes keep the points' front.
   EXPECT_TRUE(SemanticOptions().foot_front_classes.count("wheelchair"));
   EXPECT_FALSE(SemanticOptions().foot_front_classes.count("chair"));
-  const auto loaded = load_semantic_options(YAML::Load("measurement: {front_from_foot: false, floor_spread: 0.1}"), "s.yaml");
-  EXPECT_FALSE(loaded.measurement.front_from_foot);
-  EXPECT_DOUBLE_EQ(loaded.measurement.floor_spread, 0.1);
+  expect_switch_on_by_default("front_from_foot", [](const SemanticOptions& s) { return s.measurement.front_from_foot; });
+  EXPECT_DOUBLE_EQ(load_semantic_options(YAML::Load("measurement: {floor_spread: 0.1}"), "s.yaml").measurement.floor_spread,
+                   0.1);
   test::expect_load_error_names("measurement: {floor_spread: -1}", "semantics.measurement.floor_spread");
 }
 
