@@ -124,19 +124,28 @@ std::optional<Eigen::Vector3d> ray_meets_plane(const slam::PinholeCamera& cam, c
   return Eigen::Vector3d(T_wc.translation() + t * ray);
 }
 
+// The heights (along `up`) of the pixels in rows first..last (clipped to the image), about 40
+// columns spread over x0..x1; pixels without depth are skipped.
+std::vector<double> pixel_heights(const cv::Mat& depth, const slam::PinholeCamera& cam, const slam::SE3& T_wc,
+                                  int first, int last, int x0, int x1, const Eigen::Vector3d& up) {
+  std::vector<double> hs;
+  const int step = std::max(1, (x1 - x0) / 40);
+  for (int y = std::max(0, first); y <= last && y < depth.rows; ++y)
+    for (int x = x0; x <= x1; x += step) {
+      const double z = depth.at<float>(y, x);
+      if (z > 0) hs.push_back((T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z)).dot(up));
+    }
+  return hs;
+}
+
 // The floor's height (along `up`) just below a box: the median height of the pixels 3-8 rows under
 // its bottom edge, columns x0..x1, when they agree within `spread` (their 10-90 % range); none when
 // the image ends there or something other than a floor lies there.
 std::optional<double> floor_below_box(const cv::Mat& depth, const slam::PinholeCamera& cam, const slam::SE3& T_wc,
                                       const Eigen::Vector4d& box, int x0, int x1, const Eigen::Vector3d& up,
                                       double spread) {
-  std::vector<double> hs;
-  const int step = std::max(1, (x1 - x0) / 40);
-  for (int y = static_cast<int>(box(3)) + 3; y <= static_cast<int>(box(3)) + 8 && y < depth.rows; ++y)
-    for (int x = x0; x <= x1; x += step) {
-      const double z = depth.at<float>(y, x);
-      if (z > 0) hs.push_back((T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z)).dot(up));
-    }
+  const int bottom = static_cast<int>(box(3));
+  std::vector<double> hs = pixel_heights(depth, cam, T_wc, bottom + 3, bottom + 8, x0, x1, up);
   if (hs.size() < 10) return std::nullopt;
   if (percentile(hs, 0.9) - percentile(hs, 0.1) > spread) return std::nullopt;
   return percentile(hs, 0.5);
@@ -204,13 +213,7 @@ bool surface_reaches_bottom_border(const cv::Mat& depth, const slam::PinholeCame
                                    const Eigen::Vector4d& box, int x0, int x1, const Eigen::Vector3d& up,
                                    double height, double tolerance) {
   const int first = std::max(0, static_cast<int>(std::ceil(box(3))) + 1);
-  std::vector<double> hs;
-  const int step = std::max(1, (x1 - x0) / 40);
-  for (int y = first; y < depth.rows; ++y)
-    for (int x = x0; x <= x1; x += step) {
-      const double z = depth.at<float>(y, x);
-      if (z > 0) hs.push_back((T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z)).dot(up));
-    }
+  std::vector<double> hs = pixel_heights(depth, cam, T_wc, first, depth.rows - 1, x0, x1, up);
   if (hs.empty()) return first >= depth.rows;  // no rows below the box: it touches the border
   return std::abs(percentile(hs, 0.5) - height) <= tolerance;
 }
