@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <functional>
 #include <cmath>
 #include <map>
@@ -16,6 +17,95 @@ double percentile(std::vector<double>& v, double q) {
   const size_t k = static_cast<size_t>(std::clamp(q, 0.0, 1.0) * (v.size() - 1));
   std::nth_element(v.begin(), v.begin() + k, v.end());
   return v[k];
+}
+
+// A point of a vertical face: its horizontal unit normal, turned towards the camera, and how
+// vertical the face stands (1: upright).
+struct FacePoint {
+  Eigen::Vector3d p, n;
+  double weight;
+};
+
+// The points of the object's vertical faces among the given pixels: the surface normal from the
+// depth `step` pixels right and below (none across a depth jump), kept when it stands within 17
+// degrees of horizontal.
+std::vector<FacePoint> vertical_face_points(const cv::Mat& depth, const slam::PinholeCamera& cam, const slam::SE3& T_wc,
+                                            const std::vector<cv::Point>& pixels, const Eigen::Vector3d& z, int step) {
+  const auto point = [&](int x, int y) -> std::optional<Eigen::Vector3d> {
+    if (x < 0 || y < 0 || x >= depth.cols || y >= depth.rows) return std::nullopt;
+    const double d = depth.at<float>(y, x);
+    if (!(d > 0)) return std::nullopt;
+    return T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * d);
+  };
+  std::vector<FacePoint> faces;
+  for (const cv::Point& px : pixels) {
+    const auto p = point(px.x, px.y), pr = point(px.x + step, px.y), pd = point(px.x, px.y + step);
+    if (!p || !pr || !pd) continue;
+    const Eigen::Vector3d a = *pr - *p, b = *pd - *p;
+    const double spacing = (*p - T_wc.translation()).norm() * step / cam.fx;
+    if (a.norm() > 4 * spacing + 0.05 || b.norm() > 4 * spacing + 0.05) continue;
+    Eigen::Vector3d n = a.cross(b);
+    if (n.norm() < 1e-12) continue;
+    n.normalize();
+    const double vertical = std::abs(n.dot(z));
+    if (vertical > 0.3) continue;
+    n -= n.dot(z) * z;
+    n.normalize();
+    if (n.dot(T_wc.translation() - *p) < 0) n = -n;
+    faces.push_back({*p, n, 1 - vertical});
+  }
+  return faces;
+}
+
+// The horizontal axis of the object's dominant vertical faces: their normals vote for their
+// direction modulo a quarter turn, weighted by how upright the face stands; the fullest 3-degree
+// bin, refined by the mean of the votes within 3 degrees of it, is one axis of the object's box.
+// Of it and the axis across it, the one along which the points' 5-95 % extent is longer is
+// returned. Unlike the principal axes it does not turn with where the points crowd (a near end
+// holds more pixels per metre). None with fewer than min_votes face points.
+std::optional<Eigen::Vector3d> vertical_face_axis(const std::vector<FacePoint>& faces,
+                                                  const std::vector<Eigen::Vector3d>& world, const Eigen::Vector3d& z,
+                                                  const Eigen::Vector3d& e1, const Eigen::Vector3d& e2, int min_votes) {
+  if (static_cast<int>(faces.size()) < min_votes) return std::nullopt;
+  const auto angle_of = [&](const Eigen::Vector3d& n) { return std::fmod(std::atan2(n.dot(e2), n.dot(e1)) + 2 * M_PI, M_PI / 2); };
+  constexpr int kBins = 30;  // 3 degrees each
+  std::array<double, kBins> hist{};
+  for (const FacePoint& f : faces) hist[std::min(kBins - 1, static_cast<int>(angle_of(f.n) / (M_PI / 2) * kBins))] += f.weight;
+  const auto around = [&](int i) { return hist[i] + hist[(i + 1) % kBins] + hist[(i + kBins - 1) % kBins]; };
+  int best = 0;
+  for (int i = 1; i < kBins; ++i)
+    if (around(i) > around(best)) best = i;
+  const double centre = (best + 0.5) * (M_PI / 2) / kBins;
+  double sum = 0, weight = 0;
+  for (const FacePoint& f : faces) {
+    double d = angle_of(f.n) - centre;  // wrapped to the peak's quarter turn
+    if (d > M_PI / 4) d -= M_PI / 2;
+    if (d < -M_PI / 4) d += M_PI / 2;
+    if (std::abs(d) <= M_PI / 60) sum += f.weight * d, weight += f.weight;
+  }
+  const double angle = centre + (weight > 0 ? sum / weight : 0);
+  const Eigen::Vector3d u = std::cos(angle) * e1 + std::sin(angle) * e2, v = z.cross(u);
+  std::vector<double> a, b;
+  for (const auto& p : world) a.push_back(p.dot(u)), b.push_back(p.dot(v));
+  const double la = percentile(a, 0.95) - percentile(a, 0.05), lb = percentile(b, 0.95) - percentile(b, 0.05);
+  return la >= lb ? u : v;
+}
+
+// Where along `axis` the object's face across it stands, when the camera sees it: the median
+// position of the face points whose normal lies within 10 degrees of the axis (either way; the
+// camera sees one of the two faces), with the side the face looks to (+1: +axis). None when fewer
+// than min_points.
+std::optional<std::pair<double, double>> seen_face(const std::vector<FacePoint>& faces, const Eigen::Vector3d& axis,
+                                                   int min_points) {
+  std::vector<double> plus, minus;
+  for (const FacePoint& f : faces) {
+    const double c = f.n.dot(axis);
+    if (c > std::cos(M_PI / 18)) plus.push_back(f.p.dot(axis));
+    if (c < -std::cos(M_PI / 18)) minus.push_back(f.p.dot(axis));
+  }
+  auto& side = plus.size() >= minus.size() ? plus : minus;
+  if (static_cast<int>(side.size()) < min_points) return std::nullopt;
+  return std::make_pair(percentile(side, 0.5), &side == &plus ? 1.0 : -1.0);
 }
 
 }  // namespace
@@ -326,7 +416,16 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   }
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(C);
   const Eigen::Vector2d major = eig.eigenvectors().col(1);
-  const Eigen::Matrix3d R = upright_rotation(z, major(0) * e1 + major(1) * e2);
+  // A plane_axes_classes class: the axes of its vertical faces, and where those faces stand.
+  std::vector<FacePoint> faces;
+  std::optional<Eigen::Vector3d> face_axis_dir;
+  if (o.axes_from_planes && options.plane_axes_classes.count(label)) {
+    std::vector<cv::Point> pixels;
+    for (size_t i = begin; i < end; ++i) pixels.emplace_back(samples[i].x, samples[i].y);
+    faces = vertical_face_points(depth, cam, T_wc, pixels, z, std::max(2, stride));
+    face_axis_dir = vertical_face_axis(faces, world, z, e1, e2, o.min_points);
+  }
+  const Eigen::Matrix3d R = upright_rotation(z, face_axis_dir ? *face_axis_dir : Eigen::Vector3d(major(0) * e1 + major(1) * e2));
 
   // Extents along the object axes.
   std::vector<double> ax[3];
@@ -515,6 +614,19 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
       size(1 - k) = std::max(size(1 - k), width);
       size(2) = std::max(size(2), cs[2]);
     }
+    // Seen at a slant, a plane_axes_classes class shows the face across its other axis too (a bed's
+    // side beside its foot): the points' middle along that axis lies towards the camera (the far
+    // side is hidden or trimmed), so the centre is that face pushed back by half the box's size.
+    // Only a face in the near quarter of the points' extent is the object's side; one farther back
+    // faces the camera from behind the object or inside it (a wall beyond a bed's far side, seen
+    // past the bed from its foot: aisle_right_turn's bed 12 was pushed 1 m onto it).
+    const int j = 1 - k;
+    if (face_axis_dir && cut_axis < 0 && o.anchor_side_face)
+      if (const auto face = seen_face(faces, R.col(j), o.min_points);
+          face && face->second * (face->first - 0.5 * (lo(j) + hi(j))) >= 0.25 * (hi(j) - lo(j))) {
+        const double mid = face->first - face->second * 0.5 * size(j);
+        centre += (mid - centre.dot(R.col(j))) * R.col(j);
+      }
   }
   // A tall class (a door, a pole) spans its box's rows: its height and the box's height bound its
   // distance. A pole owns few of its box's pixels, and its depth window can land on the wall behind.

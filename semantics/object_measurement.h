@@ -50,7 +50,8 @@ struct Occluder {
 // Assoc. Eq. 1 "Pose": the object's pose and size from the depth inside its box. Points are taken
 // from the box shrunk by box_shrink; the depth window as deep as the class that holds the most of
 // them is the object; they are moved to the world; the orientation is the principal horizontal axis
-// (about `up`), the size the 5-95 % extents. With complete_depth_with_class_size, a centre seen
+// (about `up`), or for a plane_axes_classes class (a bed) the axis its vertical faces' normals agree
+// on, the size the 5-95 % extents. With complete_depth_with_class_size, a centre seen
 // only from the front is pushed back by half the missing depth of the class's typical size, and a
 // box cut off by the image's top or bottom border is completed to the class's height from its
 // visible end, unless a long class shows its top there (seen from above, the cut hides its near

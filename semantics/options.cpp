@@ -143,6 +143,8 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   mk.read("mask_to_far_end", o.measurement.mask_to_far_end);
   mk.read("box_mask_to_far_end", o.measurement.box_mask_to_far_end);
   mk.read("front_from_foot", o.measurement.front_from_foot);
+  mk.read("axes_from_planes", o.measurement.axes_from_planes);
+  mk.read("anchor_side_face", o.measurement.anchor_side_face);
   mk.read("floor_spread", o.measurement.floor_spread);
   gk.read("size", o.groups.size);
   gk.read("overlap", o.groups.overlap);

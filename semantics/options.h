@@ -100,6 +100,12 @@ struct MeasurementOptions {
   // The front of a foot_front_classes class from the ray through its box's bottom row and the floor
   // just below the box (the pixels there agreeing on a height within floor_spread, m).
   bool front_from_foot = true;
+  // A plane_axes_classes class's horizontal axes from the normals of its vertical faces, instead of
+  // its points' principal axes.
+  bool axes_from_planes = true;
+  // ... and, when the face across the other horizontal axis is seen too, the centre along that axis
+  // half the box's size behind that face.
+  bool anchor_side_face = true;
   double floor_spread = 0.05;
 };
 
@@ -269,6 +275,16 @@ struct SemanticOptions {
   // Classes whose nearest parts stand low, in the rows box_shrink trims (a wheelchair's footrests and
   // casters): with measurement.front_from_foot their front is where the box's bottom row meets the floor.
   std::set<std::string> foot_front_classes = {"wheelchair"};
+  // Classes whose seen points crowd unevenly over faces that meet at a corner: a bed seen from its
+  // foot shows its footboard, its top and one side, and the principal axes of those points ran 15
+  // degrees (median) off its length on the synthetic ward. With measurement.axes_from_planes their
+  // axes come from the normals of their vertical faces (0.4 degrees), and with
+  // measurement.anchor_side_face their side from the face seen across their other axis. Chairs keep
+  // their principal axes: axes along their faces (from the smallest rectangle holding their points)
+  // placed them better, but also brought the measurements of a chair hidden behind another, taken
+  // on that one, closer to its landmark, and chairs in a row merged and swapped more
+  // (docs/EXPERIMENTS.md).
+  std::set<std::string> plane_axes_classes = {"bed"};
   // Classes other objects stand on (their boxes hold the boxes of what is on them).
   std::set<std::string> support_classes = {"table", "bed", "desk", "counter", "bench"};
 

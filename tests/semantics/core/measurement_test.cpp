@@ -528,6 +528,97 @@ TEST(Measurement, ThinClassHeightFromTheBoxRows) {
   EXPECT_LT(points_only->pose.translation().y(), 1.2 - 0.425 - 0.06);  // the legs' few points barely count
 }
 
+// Depth (camera z) of a floor (world z = 0, up = +z) and of boxes (a bed's parts), each given by its
+// centre and half size in the bed's frame: the bed stands at `centre` (on the floor), turned by
+// yaw about up, its length along its own y. Seen by a camera at `eye` looking along world x, pitched
+// down. Returns the depth, the bed's image box and the camera pose.
+struct BoxView {
+  cv::Mat depth;
+  Eigen::Vector4d box;
+  slam::SE3 T_wc;
+};
+struct Part {
+  Eigen::Vector3d centre, half;
+};
+BoxView bed_on_floor(const std::vector<Part>& parts, const Eigen::Vector3d& centre, double yaw_deg,
+                     const Eigen::Vector3d& eye, double pitch_deg) {
+  const auto cam = camera();
+  Eigen::Matrix3d level;  // camera z = world x, camera x = -world y, camera y = -world z
+  level << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  const Eigen::Matrix3d R_wc = level * Eigen::AngleAxisd(-pitch_deg * M_PI / 180, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const Eigen::Matrix3d R_wb = Eigen::AngleAxisd(yaw_deg * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  BoxView v{cv::Mat(480, 640, CV_32F, cv::Scalar(0.0f)), Eigen::Vector4d(640, 480, -1, -1), slam::SE3(R_wc, eye)};
+  for (int y = 0; y < 480; ++y)
+    for (int x = 0; x < 640; ++x) {
+      const Eigen::Vector3d ray_c = cam.unproject(Eigen::Vector2d(x, y)), ray = R_wc * ray_c;
+      double t = ray.z() < 0 ? -eye.z() / ray.z() : 1e9;  // the floor
+      bool on_bed = false;
+      for (const Part& part : parts) {
+        // Slabs of the part, in the bed's frame.
+        const Eigen::Vector3d o = R_wb.transpose() * (eye - centre) - part.centre, r = R_wb.transpose() * ray;
+        double t0 = 0, t1 = 1e9;
+        for (int k = 0; k < 3; ++k) {
+          if (std::abs(r(k)) < 1e-12) {
+            if (std::abs(o(k)) > part.half(k)) t0 = 2e9;
+            continue;
+          }
+          const double a = (-part.half(k) - o(k)) / r(k), b = (part.half(k) - o(k)) / r(k);
+          t0 = std::max(t0, std::min(a, b)), t1 = std::min(t1, std::max(a, b));
+        }
+        if (t0 <= t1 && t0 < t) t = t0, on_bed = true;
+      }
+      if (t < 1e8 && ray_c.z() * t < 10) v.depth.at<float>(y, x) = static_cast<float>(ray_c.z() * t);
+      if (on_bed)
+        v.box = Eigen::Vector4d(std::min<double>(v.box(0), x), std::min<double>(v.box(1), y),
+                                std::max<double>(v.box(2), x), std::max<double>(v.box(3), y));
+    }
+  return v;
+}
+
+// A bed seen from above and beside its foot shows its foot, its top and one side; their points
+// crowd at the near corner, and their principal axes run off the bed's length. The normals of its
+// vertical faces give its axes, and its side face its centre across.
+TEST(Measurement, LongClassAxesAndSideFromItsVerticalFaces) {
+  SemanticOptions o;
+  const double yaw = -70;  // the bed's length 20 degrees off the line of sight, its foot towards the camera
+  const Eigen::Vector3d centre(4.5, 0.4, 0.3);
+  const BoxView v = bed_on_floor({{Eigen::Vector3d::Zero(), Eigen::Vector3d(0.5, 1.0, 0.3)}}, centre, yaw,
+                                 Eigen::Vector3d(0, 0, 1.6), 22);
+  ASSERT_GT(v.box(0), 2);  // whole in the image
+  ASSERT_LT(v.box(3), 477);
+  const Eigen::Vector3d length(-std::sin(yaw * M_PI / 180), std::cos(yaw * M_PI / 180), 0);
+  const Eigen::Vector3d across = Eigen::Vector3d::UnitZ().cross(length);
+  const auto measure = [&](const SemanticOptions& opts) {
+    return measure_pose_from_depth(v.depth, camera(), v.T_wc, v.box, Eigen::Vector3d::UnitZ(), "bed", opts);
+  };
+  const auto axis_error_deg = [&](const ObjectPose& p) {  // of the box axis nearer the bed's length
+    const Eigen::Matrix3d R = p.pose.rotation_matrix();
+    return std::acos(std::min(1.0, std::max(std::abs(R.col(0).dot(length)), std::abs(R.col(1).dot(length))))) * 180 / M_PI;
+  };
+  const auto p = measure(o);
+  ASSERT_TRUE(p);
+  EXPECT_LT(axis_error_deg(*p), 1.0);
+  // Along: the foot pushed back by half the class's 2 m. Across: the side pushed back by half the
+  // class's 0.95 m, 0.025 m off this 1 m wide bed.
+  EXPECT_NEAR((p->pose.translation() - centre).dot(length), 0.0, 0.02);
+  EXPECT_NEAR((p->pose.translation() - centre).dot(across), 0.025, 0.02);
+  // Without the side: the middle of the points across, towards the camera.
+  o.measurement.anchor_side_face = false;
+  const auto middle = measure(o);
+  ASSERT_TRUE(middle);
+  EXPECT_GT((middle->pose.translation() - centre).dot(across), 0.1);
+  // The principal axes run 30 degrees off, and the centre half a metre.
+  o.measurement.axes_from_planes = false;
+  const auto pca = measure(o);
+  ASSERT_TRUE(pca);
+  EXPECT_GT(axis_error_deg(*pca), 20.0);
+  EXPECT_GT((pca->pose.translation() - centre).head<2>().norm(), 0.4);
+  EXPECT_TRUE(SemanticOptions().plane_axes_classes.count("bed"));
+  EXPECT_FALSE(SemanticOptions().plane_axes_classes.count("chair"));
+  expect_switch_on_by_default("axes_from_planes", [](const SemanticOptions& s) { return s.measurement.axes_from_planes; });
+  expect_switch_on_by_default("anchor_side_face", [](const SemanticOptions& s) { return s.measurement.anchor_side_face; });
+}
+
 TEST(Measurement, UpFromCameraPoses) {
   // Upright cameras looking along world x in a z-up world: camera y (down) = world -z.
   Eigen::Matrix3d R;
