@@ -539,6 +539,7 @@ struct BoxView {
 };
 struct Part {
   Eigen::Vector3d centre, half;
+  bool of_bed = true;  // false: in the scene, not in the bed's image box
 };
 BoxView bed_on_floor(const std::vector<Part>& parts, const Eigen::Vector3d& centre, double yaw_deg,
                      const Eigen::Vector3d& eye, double pitch_deg) {
@@ -565,7 +566,7 @@ BoxView bed_on_floor(const std::vector<Part>& parts, const Eigen::Vector3d& cent
           const double a = (-part.half(k) - o(k)) / r(k), b = (part.half(k) - o(k)) / r(k);
           t0 = std::max(t0, std::min(a, b)), t1 = std::min(t1, std::max(a, b));
         }
-        if (t0 <= t1 && t0 < t) t = t0, on_bed = true;
+        if (t0 <= t1 && t0 < t) t = t0, on_bed = part.of_bed;
       }
       if (t < 1e8 && ray_c.z() * t < 10) v.depth.at<float>(y, x) = static_cast<float>(ray_c.z() * t);
       if (on_bed)
@@ -617,6 +618,25 @@ TEST(Measurement, LongClassAxesAndSideFromItsVerticalFaces) {
   EXPECT_FALSE(SemanticOptions().plane_axes_classes.count("chair"));
   expect_switch_on_by_default("axes_from_planes", [](const SemanticOptions& s) { return s.measurement.axes_from_planes; });
   expect_switch_on_by_default("anchor_side_face", [](const SemanticOptions& s) { return s.measurement.anchor_side_face; });
+}
+
+// Seen along its length from near its foot, a bed standing 0.5 m from a wall shows the wall beyond
+// its far side: a face across its width that looks towards the camera from behind the bed. It does
+// not place the bed's side (taken for it, the bed would be pushed 1.5 m, onto the wall's far side).
+TEST(Measurement, AFaceBehindTheBedDoesNotPlaceItsSide) {
+  SemanticOptions o;
+  const Eigen::Vector3d centre(4.0, 0.0, 0.0);  // the bed's length along world x (yaw -90 degrees)
+  const std::vector<Part> scene = {{Eigen::Vector3d(0, 0, 0.3), Eigen::Vector3d(0.5, 1.0, 0.3)},
+                                   {Eigen::Vector3d(-1.0, 0, 0.75), Eigen::Vector3d(0.01, 2.5, 0.75), false}};  // wall, y = 1
+  const Eigen::Vector3d eye(1.5, -0.6, 1.9);
+  const BoxView v = bed_on_floor(scene, centre, -90, eye, std::atan2(eye.z() - 0.3, centre.x() - eye.x()) * 180 / M_PI);
+  ASSERT_GT(v.box(0), 2);  // whole in the image
+  ASSERT_LT(v.box(2), 637);
+  ASSERT_LT(v.box(3), 477);
+  const auto p = measure_pose_from_depth(v.depth, camera(), v.T_wc, v.box, Eigen::Vector3d::UnitZ(), "bed", o);
+  ASSERT_TRUE(p);
+  EXPECT_NEAR(p->pose.translation().x(), centre.x(), 0.05);
+  EXPECT_LT(std::abs(p->pose.translation().y() - centre.y()), 0.15);
 }
 
 TEST(Measurement, UpFromCameraPoses) {
