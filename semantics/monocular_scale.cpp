@@ -86,6 +86,9 @@ MeasurementOptions sparse_measurement_options(const SemanticOptions& options) {
   m.target_samples = 1 << 30;  // stride 1: a sparse image's pixels are too few to skip any
   const int side = 2 * options.monocular.point_radius + 1;
   m.min_points = options.monocular.min_points * side * side;
+  // Each point fills a square of one depth, which faces the camera: its normals are not the
+  // object's faces (a bed's axes would turn to the line of sight).
+  m.axes_from_planes = false;
   return m;
 }
 

@@ -48,7 +48,8 @@ std::vector<double> keyframe_scale_estimates(const std::vector<Eigen::Vector3d>&
 std::optional<double> metric_scale(std::vector<double> estimates, const MonocularOptions& options);
 
 // The measurement options for a sparse depth image: every pixel of the trimmed box is read (no
-// stride), and the minimum number of samples is monocular.min_points squares' worth.
+// stride), the minimum number of samples is monocular.min_points squares' worth, and no axes come
+// from face normals (each square faces the camera).
 MeasurementOptions sparse_measurement_options(const SemanticOptions& options);
 
 }  // namespace wardmap::semantics

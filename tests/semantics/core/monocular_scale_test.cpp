@@ -99,6 +99,9 @@ TEST(MetricScale, SparsePointsMeasureLikeDenseDepth) {
     for (int x = 230; x < 420; x += 12) pts.push_back(cam.unproject(Eigen::Vector2d(x, y)) * (3.0 / unit));
   SemanticOptions sparse = o;
   sparse.measurement = sparse_measurement_options(o);
+  // A sparse image's squares face the camera: no axes from face normals.
+  EXPECT_TRUE(o.measurement.axes_from_planes);
+  EXPECT_FALSE(sparse.measurement.axes_from_planes);
   const cv::Mat d = sparse_depth_image(pts, cam, o.monocular.point_radius, unit);
   const Eigen::Vector3d up(0, -1, 0);
   const auto p = measure_pose_from_depth(d, cam, slam::SE3(), box, up, "cabinet", sparse);
