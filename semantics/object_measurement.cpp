@@ -26,11 +26,12 @@ struct FacePoint {
   double weight;
 };
 
-// The points of the object's vertical faces among the given pixels: the surface normal from the
-// depth `step` pixels right and below (none across a depth jump), kept when it stands within 17
-// degrees of horizontal.
+// The points of the object's vertical faces among the given pixels and their world points: the
+// surface normal from the depth `step` pixels right and below (none across a depth jump), kept when
+// it stands within 17 degrees of horizontal.
 std::vector<FacePoint> vertical_face_points(const cv::Mat& depth, const slam::PinholeCamera& cam, const slam::SE3& T_wc,
-                                            const std::vector<cv::Point>& pixels, const Eigen::Vector3d& z, int step) {
+                                            const std::vector<std::pair<cv::Point, Eigen::Vector3d>>& pixels,
+                                            const Eigen::Vector3d& z, int step) {
   const auto point = [&](int x, int y) -> std::optional<Eigen::Vector3d> {
     if (x < 0 || y < 0 || x >= depth.cols || y >= depth.rows) return std::nullopt;
     const double d = depth.at<float>(y, x);
@@ -38,11 +39,11 @@ std::vector<FacePoint> vertical_face_points(const cv::Mat& depth, const slam::Pi
     return T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * d);
   };
   std::vector<FacePoint> faces;
-  for (const cv::Point& px : pixels) {
-    const auto p = point(px.x, px.y), pr = point(px.x + step, px.y), pd = point(px.x, px.y + step);
-    if (!p || !pr || !pd) continue;
-    const Eigen::Vector3d a = *pr - *p, b = *pd - *p;
-    const double spacing = (*p - T_wc.translation()).norm() * step / cam.fx;
+  for (const auto& [px, p] : pixels) {
+    const auto pr = point(px.x + step, px.y), pd = point(px.x, px.y + step);
+    if (!pr || !pd) continue;
+    const Eigen::Vector3d a = *pr - p, b = *pd - p;
+    const double spacing = (p - T_wc.translation()).norm() * step / cam.fx;
     if (a.norm() > 4 * spacing + 0.05 || b.norm() > 4 * spacing + 0.05) continue;
     Eigen::Vector3d n = a.cross(b);
     if (n.norm() < 1e-12) continue;
@@ -51,8 +52,8 @@ std::vector<FacePoint> vertical_face_points(const cv::Mat& depth, const slam::Pi
     if (vertical > 0.3) continue;
     n -= n.dot(z) * z;
     n.normalize();
-    if (n.dot(T_wc.translation() - *p) < 0) n = -n;
-    faces.push_back({*p, n, 1 - vertical});
+    if (n.dot(T_wc.translation() - p) < 0) n = -n;
+    faces.push_back({p, n, 1 - vertical});
   }
   return faces;
 }
@@ -420,8 +421,8 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   std::vector<FacePoint> faces;
   std::optional<Eigen::Vector3d> face_axis_dir;
   if (o.axes_from_planes && options.plane_axes_classes.count(label)) {
-    std::vector<cv::Point> pixels;
-    for (size_t i = begin; i < end; ++i) pixels.emplace_back(samples[i].x, samples[i].y);
+    std::vector<std::pair<cv::Point, Eigen::Vector3d>> pixels;  // the window's samples: their points are known
+    for (size_t i = begin; i < end; ++i) pixels.emplace_back(cv::Point(samples[i].x, samples[i].y), samples[i].p);
     faces = vertical_face_points(depth, cam, T_wc, pixels, z, std::max(2, stride));
     face_axis_dir = vertical_face_axis(faces, world, z, e1, e2, o.min_points);
   }
