@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "apps/detection_cache.h"
@@ -42,6 +43,13 @@ json evaluation_json(const semantics::ObjectEvaluation& e) {
           {"id_switches", e.id_switches}, {"mota", e.mota}};
 }
 
+// Landmarks by class, in class order.
+std::map<std::string, int> landmark_counts(const semantics::AssociationResult& r) {
+  std::map<std::string, int> n;
+  for (const auto& l : r.landmarks) ++n[l.label];
+  return n;
+}
+
 }  // namespace
 
 std::string format_object_evaluation(const semantics::ObjectEvaluation& e) {
@@ -54,6 +62,37 @@ std::string format_object_evaluation(const semantics::ObjectEvaluation& e) {
                 e.association_accuracy, e.correct, e.identified - e.dropped, e.dropped, e.false_positives, e.landmarks,
                 e.objects_seen, e.objects_mapped, e.position_error_mean, e.position_error_max, e.id_switches, e.mota);
   return buf;
+}
+
+std::string format_landmark_counts(const semantics::AssociationResult& r) {
+  std::string out;
+  for (const auto& [label, count] : landmark_counts(r)) out += (out.empty() ? "" : ", ") + label + " " + std::to_string(count);
+  return out.empty() ? "none" : out;
+}
+
+std::string format_baseline_comparison(const SemanticRun& r) {
+  if (!r.baseline) return {};
+  const bool truth = r.evaluation && r.baseline_evaluation;
+  char line[256];
+  std::string out;
+  if (truth) {
+    std::snprintf(line, sizeof line, "%-12s | %9s | %9s | %9s | %8s | %8s | %6s\n", "association", "landmarks",
+                  "accuracy", "Object_GT", "pos.err", "max err", "ID sw.");
+    out += line;
+    for (const auto* e : {&*r.evaluation, &*r.baseline_evaluation}) {
+      std::snprintf(line, sizeof line, "%-12s | %9d | %8.2f%% | %9d | %6.3f m | %6.3f m | %6d\n",
+                    e == &*r.evaluation ? "hierarchical" : "hdp-only", e->landmarks, e->association_accuracy,
+                    e->objects_seen, e->position_error_mean, e->position_error_max, e->id_switches);
+      out += line;
+    }
+  } else {
+    std::snprintf(line, sizeof line, "%-12s | %9s\n%-12s | %9zu\n%-12s | %9zu\n", "association", "landmarks",
+                  "hierarchical", r.result.landmarks.size(), "hdp-only", r.baseline->landmarks.size());
+    out += line;
+  }
+  out += "by class: hierarchical " + format_landmark_counts(r.result) + "; hdp-only " +
+         format_landmark_counts(*r.baseline) + "\n";
+  return out;
 }
 
 SemanticSetup::~SemanticSetup() = default;  // DetectionCache is complete here
@@ -203,19 +242,11 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
   run.times.detection = cache.detection_seconds();
   run.times.embedding = cache.embedding_seconds();
 
+  if (job.baseline && options.association.mode == "hierarchical") run.baseline = mapper.build_map("hdp-only");
+
   // Object figures when the sequence has object ground truth (synthetic sequences).
   const fs::path truth_file = job.sequence / "objects.json", ann_file = job.sequence / "annotations.jsonl";
   if (fs::exists(truth_file) && fs::exists(ann_file)) {
-    std::vector<semantics::MeasurementRecord> records;
-    for (const auto& m : run.measurements) {
-      semantics::MeasurementRecord r;
-      r.keyframe = m.keyframe, r.timestamp = m.timestamp, r.label = m.label, r.box = m.box, r.score = m.score;
-      r.track = run.result.track_of[m.id], r.group = run.result.group_of[m.id], r.landmark = run.result.landmark_of[m.id];
-      r.gt_instance = m.gt_instance;
-      records.push_back(r);
-    }
-    std::vector<semantics::TrueObject> estimated;
-    for (const auto& l : run.result.landmarks) estimated.push_back({l.id, l.label, l.pose});
     // The run's world onto the ground truth's (identity on ground-truth poses; SE(3) for RGB-D SLAM).
     slam::Sim3 align;
     if (job.trajectory && !gt.empty()) {
@@ -226,8 +257,23 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
       if (pairs.size() >= 3) align = slam::eval::compute_ate(gt, trajectory, pairs, alignment).transform;
       if (pairs.size() >= 3 && job.keyframe_points && run.metric_scale) run.alignment_scale = align.scale();
     }
-    run.evaluation = semantics::evaluate_objects(records, estimated, semantics::read_objects_json(truth_file),
-                                                 semantics::load_annotations(ann_file), align);
+    const auto truth = semantics::read_objects_json(truth_file);
+    const auto annotations = semantics::load_annotations(ann_file);
+    const auto evaluate = [&](const semantics::AssociationResult& result) {
+      std::vector<semantics::MeasurementRecord> records;
+      for (const auto& m : run.measurements) {
+        semantics::MeasurementRecord r;
+        r.keyframe = m.keyframe, r.timestamp = m.timestamp, r.label = m.label, r.box = m.box, r.score = m.score;
+        r.track = result.track_of[m.id], r.group = result.group_of[m.id], r.landmark = result.landmark_of[m.id];
+        r.gt_instance = m.gt_instance;
+        records.push_back(r);
+      }
+      std::vector<semantics::TrueObject> estimated;
+      for (const auto& l : result.landmarks) estimated.push_back({l.id, l.label, l.pose});
+      return semantics::evaluate_objects(records, estimated, truth, annotations, align);
+    };
+    run.evaluation = evaluate(run.result);
+    if (run.baseline) run.baseline_evaluation = evaluate(*run.baseline);
   }
 
   if (!job.out.empty()) {
@@ -283,9 +329,20 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
         md += "- ground-truth scale / estimated scale: " + std::to_string(*run.alignment_scale) + "\n";
       }
     }
+    report["landmarks_by_class"] = json(landmark_counts(run.result));
     if (run.evaluation) {
       report["objects"] = evaluation_json(*run.evaluation);
       md += "\n## Objects\n\n```\n" + format_object_evaluation(*run.evaluation) + "```\n";
+    }
+    if (run.baseline) {
+      json b = {{"association", "hdp-only"}, {"landmarks", run.baseline->landmarks.size()},
+                {"landmarks_by_class", json(landmark_counts(*run.baseline))},
+                {"timing_seconds", {{"hdp_total", run.baseline->hdp_seconds}}}};
+      if (run.baseline_evaluation) b["objects"] = evaluation_json(*run.baseline_evaluation);
+      report["baseline"] = b;
+      md += "\n## Against the HDP-only baseline\n\nThe same measurements associated as HDP-SLAM does (every keyframe its own "
+            "group, no MOT, a landmark at its first measurement's pose).\n\n```\n" +
+            format_baseline_comparison(run) + "```\n";
     }
     io::write_file_atomic(job.out / (own_run ? "report.json" : "objects_report.json"), report.dump(2) + "\n");
     io::write_file_atomic(job.out / (own_run ? "report.md" : "objects_report.md"), md);

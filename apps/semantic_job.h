@@ -34,6 +34,9 @@ struct SemanticJob {
   bool embedding = true;
   std::uint64_t seed = 1;
   bool progress = true;
+  // With the hierarchical association, also associate the same measurements with the HDP-only
+  // baseline (HDP-SLAM) and report both; its map is not written.
+  bool baseline = true;
   // From the SLAM: the keyframes to map (camera-to-world) and the run's trajectory (for aligning the
   // objects to the ground truth). Null: keyframes are chosen from the ground truth (--poses gt), and
   // the run folder's trajectory files and report are written too; otherwise only the object files
@@ -67,6 +70,10 @@ struct SemanticRun {
   std::vector<semantics::KeyframeRecord> keyframes;
   semantics::StageTimes times;
   std::optional<semantics::ObjectEvaluation> evaluation;  // when the sequence has object ground truth
+  // The HDP-only baseline on the same measurements (SemanticJob::baseline with the hierarchical
+  // association), and its figures when the sequence has object ground truth.
+  std::optional<semantics::AssociationResult> baseline;
+  std::optional<semantics::ObjectEvaluation> baseline_evaluation;
   int frames = 0;
   // Monocular SLAM: metres per map unit, and how many detections gave it (0: none; no poses then).
   std::optional<double> metric_scale;
@@ -79,5 +86,13 @@ SemanticRun run_semantic_job(const SemanticJob& job);
 
 // One line per figure, for the terminal.
 std::string format_object_evaluation(const semantics::ObjectEvaluation& e);
+
+// Landmarks by class, e.g. "bed 2, chair 5, door 4".
+std::string format_landmark_counts(const semantics::AssociationResult& r);
+
+// The run's association beside the HDP-only baseline's (SemanticRun::baseline): a table with one
+// row per mode (landmarks, and with ground truth accuracy, Object_GT, position error, ID switches)
+// and the landmarks by class. Empty without a baseline.
+std::string format_baseline_comparison(const SemanticRun& r);
 
 }  // namespace wardmap::apps

@@ -311,7 +311,9 @@ double run_slam_job(const SlamJob& job) {
       const SemanticRun objects = run_semantic_job(sj);
       report["landmarks"] = objects.result.landmarks.size();
       std::printf("objects: %zu landmarks on %zu keyframes\n", objects.result.landmarks.size(), objects.keyframes.size());
+      std::printf("objects by class: %s\n", format_landmark_counts(objects.result).c_str());
       if (objects.evaluation) std::printf("%s", format_object_evaluation(*objects.evaluation).c_str());
+      if (objects.baseline) std::printf("against the HDP-only baseline:\n%s", format_baseline_comparison(objects).c_str());
     }
     report["map_points"] = points;
     io::write_file_atomic(job.out / "report.json", report.dump(2) + "\n");

@@ -66,19 +66,38 @@ void SemanticMapper::add_keyframe(const KeyframeInput& kf) {
   times_.measurement.push_back(seconds_since(t0));
 }
 
-AssociationResult SemanticMapper::build_map() {
+std::vector<std::vector<int>> SemanticMapper::make_groups() const {
   KeyframeGrouper grouper(options_.groups);
   for (const auto& k : keyframes_) grouper.add_keyframe(k.index);
   grouper.flush();
-  groups_.clear();
-  for (int n = 0; n < grouper.num_groups(); ++n) groups_.push_back(grouper.group(n));
+  std::vector<std::vector<int>> groups;
+  for (int n = 0; n < grouper.num_groups(); ++n) groups.push_back(grouper.group(n));
+  return groups;
+}
+
+AssociationResult SemanticMapper::associate(const std::vector<std::vector<int>>& groups,
+                                            const SemanticOptions& options) const {
   KeyframeViews views{camera_, {}};
   for (const auto& k : keyframes_) views.T_wc.push_back(k.T_wc);
-  AssociationResult r = associate_objects(measurements_, groups_, options_, &views);
+  return associate_objects(measurements_, groups, options, &views);
+}
+
+AssociationResult SemanticMapper::build_map() {
+  groups_ = make_groups();
+  AssociationResult r = associate(groups_, options_);
   times_.mot = r.mot_seconds;
   times_.hdp = r.hdp_seconds;
   times_.pose_selection = r.pose_selection_seconds;
   return r;
+}
+
+AssociationResult SemanticMapper::build_map(const std::string& mode) const {
+  if (mode != "hierarchical" && mode != "hdp-only")
+    throw std::invalid_argument("SemanticMapper::build_map: association mode must be hierarchical or hdp-only, got '" +
+                                mode + "'");
+  SemanticOptions options = options_;
+  options.association.mode = mode;
+  return associate(make_groups(), options);
 }
 
 }  // namespace wardmap::semantics

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "semantics/detection/detection.h"
@@ -47,8 +48,13 @@ class SemanticMapper {
   // The world's up direction; when never set, it is estimated from the keyframe poses so far.
   void set_up(const Eigen::Vector3d& up) { up_ = up.normalized(); }
   void add_keyframe(const KeyframeInput& keyframe);
-  // Groups, MOT, HDP and pose selection over everything added so far.
+  // Groups, MOT, HDP and pose selection over everything added so far, in the options' association
+  // mode; records the stage times.
   AssociationResult build_map();
+  // The same measurements and keyframe groups associated in another mode ("hdp-only": the HDP-SLAM
+  // baseline beside the hierarchical map); the same result as a mapper built with that mode, and
+  // no stage times recorded.
+  AssociationResult build_map(const std::string& mode) const;
 
   const std::vector<ObjectMeasurement>& measurements() const { return measurements_; }
   const std::vector<KeyframeRecord>& keyframes() const { return keyframes_; }
@@ -56,6 +62,9 @@ class SemanticMapper {
   const StageTimes& times() const { return times_; }
 
  private:
+  std::vector<std::vector<int>> make_groups() const;
+  AssociationResult associate(const std::vector<std::vector<int>>& groups, const SemanticOptions& options) const;
+
   SemanticOptions options_;
   Detector& detector_;
   EmbedFn embed_;

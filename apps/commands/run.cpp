@@ -3,7 +3,6 @@
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
-#include <map>
 #include <memory>
 
 #include "apps/commands/commands.h"
@@ -45,12 +44,9 @@ void run(RunArgs& a) {
   std::printf("frames %d, keyframes %zu, groups %d, group objects %d, measurements %zu, landmarks %zu\n", r.frames,
               r.keyframes.size(), r.result.num_groups, r.result.num_group_objects, r.measurements.size(),
               r.result.landmarks.size());
-  std::map<std::string, int> by_class;
-  for (const auto& l : r.result.landmarks) ++by_class[l.label];
-  std::printf("objects by class:");
-  for (const auto& [label, n] : by_class) std::printf(" %s %d", label.c_str(), n);
-  std::printf("\n");
+  std::printf("objects by class: %s\n", format_landmark_counts(r.result).c_str());
   if (r.evaluation) std::printf("%s", format_object_evaluation(*r.evaluation).c_str());
+  if (r.baseline) std::printf("against the HDP-only baseline:\n%s", format_baseline_comparison(r).c_str());
   if (!a.job.out.empty()) std::printf("outputs in %s\n", a.job.out.c_str());
 }
 
@@ -67,6 +63,12 @@ void add_semantic_options(CLI::App* cmd, SemanticJob& job) {
   cmd->add_option("--models", job.models_dir, "Folder searched first for the ONNX weights (then $WARDMAP_MODELS, ../shared/models)");
   cmd->add_flag("!--no-embedding", job.embedding, "Do not compute OSNet appearance embeddings");
   cmd->add_option("--seed", job.seed, "Seed of the detector noise and of the Gibbs sampler")->capture_default_str();
+}
+
+void add_baseline_option(CLI::App* cmd, SemanticJob& job) {
+  cmd->add_flag("!--no-baseline", job.baseline,
+                "With the hierarchical association, do not also associate the measurements with the HDP-only\n"
+                "baseline (reported beside it in the report and on the terminal; its map is not written)");
 }
 
 void add_run_command(CLI::App& app) {
@@ -97,6 +99,7 @@ void add_run_command(CLI::App& app) {
                 "sequence time since the last keyframe (mapping.sequence_time_for_mapper)")
       ->excludes("--deterministic");
   add_semantic_options(cmd, a->job);
+  add_baseline_option(cmd, a->job);
   cmd->get_option("--settings")
       ->description("Settings YAML: camera (ORB-SLAM3 keys) and the tracking/mapping/semantics/detection sections.\n"
                     "A SLAM run (--poses slam) without it reads the sequence's settings.yaml, else the shipped\n"

@@ -219,6 +219,10 @@ TEST(CliPipeline, SlamThenObjectsOnASyntheticWard) {
     EXPECT_TRUE(fs::exists(dir / "run" / f)) << f;
   EXPECT_NE(r.output.find("tracking rate 100.0 %"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("association accuracy:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("against the HDP-only baseline"), std::string::npos) << r.output;
+  std::ifstream report_in(dir / "run" / "objects_report.json");
+  const nlohmann::json report = nlohmann::json::parse(report_in);
+  EXPECT_TRUE(report.at("baseline").at("objects").contains("association_accuracy")) << report.dump(2);
   std::ifstream in(dir / "run" / "objects.json");
   const std::string objects((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(objects.find("\"class\": \"bed\""), std::string::npos) << objects;
@@ -393,6 +397,28 @@ TEST(CliObjects, EvalObjectsAndCompare) {
   EXPECT_NEAR(figures.at("position_error_mean").get<double>(),
               report.at("objects").at("position_error_mean").get<double>(), 1e-6);
 
+  // The HDP-only baseline beside it: the figures of a separate --association hdp-only run, which
+  // has no baseline of its own; --no-baseline leaves it out.
+  ASSERT_TRUE(report.contains("baseline")) << report.dump(2);
+  EXPECT_NE(run.output.find("against the HDP-only baseline"), std::string::npos) << run.output;
+  const CliResult hdp = wardmap_cli("-q run " + shq(dir / "ward") + " --poses gt --no-embedding --association hdp-only --out " +
+                                    shq(dir / "hdp"));
+  ASSERT_EQ(hdp.code, 0) << hdp.output;
+  std::ifstream hdp_in(dir / "hdp" / "report.json");
+  const nlohmann::json hdp_report = nlohmann::json::parse(hdp_in);
+  EXPECT_FALSE(hdp_report.contains("baseline"));
+  EXPECT_EQ(report.at("baseline").at("objects"), hdp_report.at("objects"));
+  EXPECT_EQ(report.at("baseline").at("landmarks"), hdp_report.at("landmarks"));
+  EXPECT_EQ(report.at("baseline").at("landmarks_by_class"), hdp_report.at("landmarks_by_class"));
+  int by_class = 0;
+  for (const auto& [label, n] : report.at("landmarks_by_class").items()) by_class += n.get<int>();
+  EXPECT_EQ(by_class, report.at("landmarks").get<int>());
+  ASSERT_EQ(wardmap_cli("-q run " + shq(dir / "ward") + " --poses gt --no-embedding --no-baseline --out " + shq(dir / "alone")).code, 0);
+  std::ifstream alone_in(dir / "alone" / "report.json");
+  const nlohmann::json alone = nlohmann::json::parse(alone_in);
+  EXPECT_FALSE(alone.contains("baseline"));
+  EXPECT_EQ(alone.at("objects"), report.at("objects"));
+
   ASSERT_EQ(wardmap_cli("-q synth --scenario aisle_straight --variant slow --frames 30 --out " + shq(dir / "aisle")).code, 0);
   expect_one_line_error(wardmap_cli("-q eval-objects --run " + shq(dir / "run") + " --sequence " + shq(dir / "aisle")),
                         "the run was made on 'ward', not on 'aisle'");
@@ -411,6 +437,9 @@ TEST(CliObjects, EvalObjectsAndCompare) {
   EXPECT_EQ(rows[0].at("association"), "hdp-only");
   EXPECT_EQ(rows[1].at("association"), "hierarchical");
   EXPECT_NEAR(rows[1].at("accuracy").get<double>(), figures.at("association_accuracy").get<double>(), 1e-9);
+  EXPECT_EQ(rows[0].at("accuracy"), hdp_report.at("objects").at("association_accuracy"));
+  EXPECT_EQ(rows[0].at("landmarks"), hdp_report.at("objects").at("landmarks"));
+  EXPECT_EQ(rows[0].at("position_error_mean"), hdp_report.at("objects").at("position_error_mean"));
 }
 
 }  // namespace
