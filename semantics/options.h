@@ -277,14 +277,14 @@ struct SemanticOptions {
   std::set<std::string> foot_front_classes = {"wheelchair"};
   // Classes whose seen points crowd unevenly over faces that meet at a corner: a bed seen from its
   // foot shows its footboard, its top and one side, and the principal axes of those points ran 15
-  // degrees (median) off its length on the synthetic ward. With measurement.axes_from_planes their
-  // axes come from the normals of their vertical faces (0.4 degrees), and with
-  // measurement.anchor_side_face their side from the face seen across their other axis. Chairs keep
-  // their principal axes: axes along their faces (from the smallest rectangle holding their points)
-  // placed them better, but also brought the measurements of a chair hidden behind another, taken
-  // on that one, closer to its landmark, and chairs in a row merged and swapped more
-  // (docs/EXPERIMENTS.md).
-  std::set<std::string> plane_axes_classes = {"bed"};
+  // degrees (median) off its length on the synthetic ward; a chair seen at a slant shows its seat's
+  // edges and its backrest in an L, whose principal axes run diagonally, and its front was anchored
+  // on the nearest corner (chair measurements 0.06-0.09 m too near, median). With
+  // measurement.axes_from_planes their axes come from the normals of their vertical faces (beds 0.4
+  // degrees), and with measurement.anchor_side_face their side from the face seen across their
+  // other axis (docs/EXPERIMENTS.md). Not cabinets (no gain: a box seen on one or two faces) nor
+  // wheelchairs (an open frame: worse).
+  std::set<std::string> plane_axes_classes = {"bed", "chair"};
   // Classes other objects stand on (their boxes hold the boxes of what is on them).
   std::set<std::string> support_classes = {"table", "bed", "desk", "counter", "bench"};
 
