@@ -82,23 +82,9 @@ void erase_gone(std::vector<ObjectLandmark>& landmarks, const std::vector<bool>&
   landmarks = std::move(kept);
 }
 
-// The image box of a landmark's 3-D box in keyframe `kf`, clipped to the image; empty when a corner
-// lies behind the camera or the box falls outside the image.
+// The image box of a landmark's 3-D box in keyframe `kf` (project_box).
 std::optional<Eigen::Vector4d> projected_box(const ObjectPose& box, const KeyframeViews& views, int kf) {
-  const slam::SE3 T_cw = views.T_wc[kf].inverse();
-  Eigen::Vector4d b(1e18, 1e18, -1e18, -1e18);
-  for (int c = 0; c < 8; ++c) {
-    const Eigen::Vector3d corner(c & 1 ? 0.5 : -0.5, c & 2 ? 0.5 : -0.5, c & 4 ? 0.5 : -0.5);
-    const Eigen::Vector3d p = T_cw * (box.pose * corner.cwiseProduct(box.size));
-    if (p.z() < 0.1) return std::nullopt;
-    const Eigen::Vector2d uv = views.camera.project(p);
-    b = Eigen::Vector4d(std::min(b(0), uv.x()), std::min(b(1), uv.y()), std::max(b(2), uv.x()), std::max(b(3), uv.y()));
-  }
-  b = b.cwiseMax(Eigen::Vector4d::Zero())
-          .cwiseMin(Eigen::Vector4d(views.camera.width - 1, views.camera.height - 1, views.camera.width - 1,
-                                    views.camera.height - 1));
-  if (b(2) <= b(0) || b(3) <= b(1)) return std::nullopt;
-  return b;
+  return project_box(box, views.camera, views.T_wc[kf]);
 }
 
 // A landmark reported only through the side-border minimums whose boxes, in at least half of its

@@ -724,13 +724,29 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
     poses[next] = measure_pose_from_depth(depth, camera, T_wc, boxes[next], up, labels[next], options, occluders);
     done[next] = true;
   }
-  drop_coincident_poses(poses, boxes, labels, up, options);
+  drop_coincident_poses(poses, boxes, labels, up, camera, T_wc, options);
   return poses;
+}
+
+std::optional<Eigen::Vector4d> project_box(const ObjectPose& box, const slam::PinholeCamera& camera, const slam::SE3& T_wc) {
+  const slam::SE3 T_cw = T_wc.inverse();
+  Eigen::Vector4d b(1e18, 1e18, -1e18, -1e18);
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector3d corner(c & 1 ? 0.5 : -0.5, c & 2 ? 0.5 : -0.5, c & 4 ? 0.5 : -0.5);
+    const Eigen::Vector3d p = T_cw * (box.pose * corner.cwiseProduct(box.size));
+    if (p.z() < 0.1) return std::nullopt;
+    const Eigen::Vector2d uv = camera.project(p);
+    b = Eigen::Vector4d(std::min(b(0), uv.x()), std::min(b(1), uv.y()), std::max(b(2), uv.x()), std::max(b(3), uv.y()));
+  }
+  b = b.cwiseMax(Eigen::Vector4d::Zero())
+          .cwiseMin(Eigen::Vector4d(camera.width - 1, camera.height - 1, camera.width - 1, camera.height - 1));
+  if (b(2) <= b(0) || b(3) <= b(1)) return std::nullopt;
+  return b;
 }
 
 void drop_coincident_poses(std::vector<std::optional<ObjectPose>>& poses, const std::vector<Eigen::Vector4d>& boxes,
                            const std::vector<std::string>& labels, const Eigen::Vector3d& up,
-                           const SemanticOptions& options) {
+                           const slam::PinholeCamera& camera, const slam::SE3& T_wc, const SemanticOptions& options) {
   const MeasurementOptions& o = options.measurement;
   const bool check_ambiguous = o.ambiguous_pair_iou <= 1;
   if (o.coincident_ratio <= 0 && !check_ambiguous) return;
@@ -752,6 +768,20 @@ void drop_coincident_poses(std::vector<std::optional<ObjectPose>>& poses, const 
           check_ambiguous && labels[i] == labels[j] && box_iou(boxes[i], boxes[j]) >= o.ambiguous_pair_iou;
       if (!coincident && !ambiguous) continue;
       const double lower = boxes[i](3) - boxes[j](3);  // > 0: i reaches lower, so it is nearer
+      if (std::abs(lower) <= o.occluder_footprint_px && coincident) {
+        // Which box does the object at that place fill? favours(k) > 0: pose k projects onto box i
+        // better than onto box j.
+        const auto favours = [&](size_t k) {
+          const auto proj = project_box(*poses[k], camera, T_wc);
+          return proj ? box_iou(*proj, boxes[i]) - box_iou(*proj, boxes[j]) : 0.0;
+        };
+        const double a = favours(i), b = favours(j), m = o.coincident_projection_margin;
+        if (a >= m && b <= -m) continue;  // each fills its own box: two objects, one placed a little off
+        if (a + b >= 2 * m || a + b <= -2 * m) {  // both measured on the object of one box
+          drop[a + b > 0 ? j : i] = true;
+          continue;
+        }
+      }
       if (lower <= o.occluder_footprint_px) drop[i] = true;
       if (lower >= -o.occluder_footprint_px) drop[j] = true;
     }

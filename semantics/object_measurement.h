@@ -75,14 +75,21 @@ std::vector<std::vector<int>> nearer_overlapping_detections(const cv::Mat& depth
                                                             const MeasurementOptions& options,
                                                             const std::vector<bool>& supports = {});
 
+// The image box of an object's 3-D box seen from camera pose T_wc, clipped to the image; none when a
+// corner lies behind the camera or the box falls outside the image.
+std::optional<Eigen::Vector4d> project_box(const ObjectPose& box, const slam::PinholeCamera& camera, const slam::SE3& T_wc);
+
 // Two detections of one keyframe whose poses stand at one place (horizontal centres closer than
 // measurement.coincident_ratio times the smaller class's smaller horizontal size; support classes
 // excepted) cannot both be right: the occluded one was measured on its occluder (chairs in a row
-// seen from behind). The farther one, whose box ends occluder_footprint_px higher, loses its pose;
-// when neither is clearly farther, both do.
+// seen from behind). The farther one, whose box ends occluder_footprint_px higher, loses its pose.
+// When neither is clearly farther (a box cut by the image's bottom border), the poses' projections
+// judge (IoU with one box less IoU with the other, margin measurement.coincident_projection_margin):
+// each filling its own box, both are kept (two objects, one placed a little off); both filling one
+// box on average, the other box's detection loses its pose; otherwise neither keeps one.
 void drop_coincident_poses(std::vector<std::optional<ObjectPose>>& poses, const std::vector<Eigen::Vector4d>& boxes,
                            const std::vector<std::string>& labels, const Eigen::Vector3d& up,
-                           const SemanticOptions& options);
+                           const slam::PinholeCamera& camera, const slam::SE3& T_wc, const SemanticOptions& options);
 
 // Assoc. Eq. 1 "Pose" for all detections of one keyframe: front to back, so that each is measured
 // without the pixels of the nearer ones, masked by their measured 3-D boxes when they have one.

@@ -70,6 +70,7 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(measurement.side_cut_min_slope, 0, 1e6, "measurement.side_cut_min_slope");
   c(measurement.min_box_side, 1, 1e4, "measurement.min_box_side");
   c(measurement.coincident_ratio, 0, 2, "measurement.coincident_ratio");
+  c(measurement.coincident_projection_margin, 0, 2, "measurement.coincident_projection_margin");
   c(measurement.tall_class_ratio, 1, 100, "measurement.tall_class_ratio");
   c(measurement.tall_depth_ratio, 0, 100, "measurement.tall_depth_ratio");
   c(measurement.ambiguous_pair_iou, 0, 2, "measurement.ambiguous_pair_iou");
@@ -137,6 +138,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   mk.read("side_cut_min_slope", o.measurement.side_cut_min_slope);
   mk.read("min_box_side", o.measurement.min_box_side);
   mk.read("coincident_ratio", o.measurement.coincident_ratio);
+  mk.read("coincident_projection_margin", o.measurement.coincident_projection_margin);
   mk.read("tall_class_ratio", o.measurement.tall_class_ratio);
   mk.read("tall_depth_ratio", o.measurement.tall_depth_ratio);
   mk.read("ambiguous_pair_iou", o.measurement.ambiguous_pair_iou);

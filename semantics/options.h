@@ -80,6 +80,12 @@ struct MeasurementOptions {
   // farther one (its box ends higher by occluder_footprint_px) loses its pose; when neither is
   // clearly farther, both do. 0: off.
   double coincident_ratio = 0.5;
+  // Neither being clearly farther (a box cut by the image's bottom), the poses' projections judge:
+  // each projecting onto its own box better by this much IoU, both keep their poses (two chairs of
+  // a row, one placed 0.3 m off); both projecting onto one box better by this much on average, the
+  // other detection loses its pose (a chair 16 % visible in the bottom corner, measured on the chair
+  // behind it, took that chair's pose with it). Above 1: off (neither keeps one).
+  double coincident_projection_margin = 0.1;
   // Tall classes (height at least tall_class_ratio times their larger horizontal size): a pose
   // farther than tall_depth_ratio times the distance at which the class's height fills the box's
   // rows is the wall behind, not the object (uncut boxes only; an occluded box is shorter, so nearer

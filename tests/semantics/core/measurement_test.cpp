@@ -167,7 +167,7 @@ TEST(Measurement, CoincidentPosesKeepTheClearlyNearerOne) {
   const auto run = [&](const ObjectPose& b, double bottom_a, double bottom_b, const std::vector<std::string>& labels) {
     std::vector<std::optional<ObjectPose>> poses = {here, b};
     drop_coincident_poses(poses, {Eigen::Vector4d(300, 200, 340, bottom_a), Eigen::Vector4d(302, 200, 342, bottom_b)},
-                          labels, up, o);
+                          labels, up, camera(), slam::SE3(), o);
     return std::make_pair(poses[0].has_value(), poses[1].has_value());
   };
   EXPECT_EQ(run(near_here, 300, 320, chairs), std::make_pair(false, true));  // the second reaches lower
@@ -176,6 +176,44 @@ TEST(Measurement, CoincidentPosesKeepTheClearlyNearerOne) {
   EXPECT_EQ(run(apart, 300, 303, chairs), std::make_pair(true, true));       // two chairs side by side
   // A cup on a table stands where the table is.
   EXPECT_EQ(run(near_here, 300, 303, {"chair", "table"}), std::make_pair(true, true));
+}
+
+// Neither box clearly nearer (both end at the image's bottom): the poses' projections judge.
+TEST(Measurement, CoincidentPosesJudgedByTheirProjections) {
+  SemanticOptions o;
+  const Eigen::Vector3d up(0, -1, 0);
+  const auto chair_at = [](double x, double z) {
+    return ObjectPose{slam::SE3(Eigen::Matrix3d::Identity(), Eigen::Vector3d(x, 0.8, z)), Eigen::Vector3d(0.5, 0.9, 0.5)};
+  };
+  const auto run = [&](const ObjectPose& a, const ObjectPose& b, const Eigen::Vector4d& box_a, const Eigen::Vector4d& box_b) {
+    std::vector<std::optional<ObjectPose>> poses = {a, b};
+    drop_coincident_poses(poses, {box_a, box_b}, {"chair", "chair"}, up, camera(), slam::SE3(), o);
+    return std::make_pair(poses[0].has_value(), poses[1].has_value());
+  };
+  const auto box_of = [&](const ObjectPose& p) {
+    const auto b = project_box(p, camera(), slam::SE3());
+    EXPECT_TRUE(b);
+    return b.value_or(Eigen::Vector4d::Zero());
+  };
+  // Two chairs 0.2 m apart (one of them measured off), each filling its own box: both kept.
+  const ObjectPose left = chair_at(-0.1, 3), right = chair_at(0.1, 3);
+  EXPECT_EQ(run(left, right, box_of(left), box_of(right)), std::make_pair(true, true));
+  // A second box in the corner of the first, both measured on the first's object: only the first
+  // keeps its pose, whichever order they come in.
+  const Eigen::Vector4d full = box_of(left), corner(full(0) + 0.5 * (full(2) - full(0)), full(1) + 0.4 * (full(3) - full(1)),
+                                                    full(2) + 20, full(3));
+  const ObjectPose on_it = chair_at(-0.05, 3.05);
+  EXPECT_EQ(run(left, on_it, full, corner), std::make_pair(true, false));
+  EXPECT_EQ(run(on_it, left, corner, full), std::make_pair(false, true));
+  // The key loads; a bad value is named.
+  EXPECT_DOUBLE_EQ(
+      load_semantic_options(YAML::Load("measurement: {coincident_projection_margin: 0.3}"), "s.yaml").measurement.coincident_projection_margin,
+      0.3);
+  test::expect_load_error_names("measurement: {coincident_projection_margin: -1}", "measurement.coincident_projection_margin");
+  // Off: neither keeps a pose.
+  o.measurement.coincident_projection_margin = 2;
+  EXPECT_EQ(run(left, right, box_of(left), box_of(right)), std::make_pair(false, false));
+  EXPECT_EQ(run(left, on_it, full, corner), std::make_pair(false, false));
 }
 
 // An iv pole in the box of the two pole tests below (180 rows: 1.8 m at 5 m with f = 500), seen by
