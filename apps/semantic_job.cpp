@@ -79,10 +79,10 @@ std::string format_baseline_comparison(const SemanticRun& r) {
     std::snprintf(line, sizeof line, "%-12s | %9s | %9s | %9s | %8s | %8s | %6s\n", "association", "landmarks",
                   "accuracy", "Object_GT", "pos.err", "max err", "ID sw.");
     out += line;
-    for (const auto* e : {&*r.evaluation, &*r.baseline_evaluation}) {
-      std::snprintf(line, sizeof line, "%-12s | %9d | %8.2f%% | %9d | %6.3f m | %6.3f m | %6d\n",
-                    e == &*r.evaluation ? "hierarchical" : "hdp-only", e->landmarks, e->association_accuracy,
-                    e->objects_seen, e->position_error_mean, e->position_error_max, e->id_switches);
+    for (const auto& [mode, e] : {std::pair{"hierarchical", &*r.evaluation}, std::pair{"hdp-only", &*r.baseline_evaluation}}) {
+      std::snprintf(line, sizeof line, "%-12s | %9d | %8.2f%% | %9d | %6.3f m | %6.3f m | %6d\n", mode, e->landmarks,
+                    e->association_accuracy, e->objects_seen, e->position_error_mean, e->position_error_max,
+                    e->id_switches);
       out += line;
     }
   } else {

@@ -78,7 +78,7 @@ struct MeasurementOptions {
   // Two detections of one keyframe measured at one place (horizontal centres closer than this times
   // the smaller class's smaller horizontal size): an occluded object measured on its occluder. The
   // farther one (its box ends higher by occluder_footprint_px) loses its pose; when neither is
-  // clearly farther, both do. 0: off.
+  // clearly farther, the projections judge (below), else both do. 0: off.
   double coincident_ratio = 0.5;
   // Neither being clearly farther (a box cut by the image's bottom), the poses' projections judge:
   // each projecting onto its own box better by this much IoU, both keep their poses (two chairs of
