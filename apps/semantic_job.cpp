@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <map>
+#include <utility>
 #include <nlohmann/json.hpp>
 
 #include "apps/detection_cache.h"

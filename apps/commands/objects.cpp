@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <utility>
 
 #include "apps/commands/commands.h"
 #include "apps/semantic_job.h"
