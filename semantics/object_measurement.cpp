@@ -242,6 +242,27 @@ std::optional<double> floor_below_box(const cv::Mat& depth, const slam::PinholeC
   return percentile(hs, 0.5);
 }
 
+// Where the pixels of rows first..last (columns x0..x1) that stand higher than `above` along `up`,
+// at depths z_near..z_far and not hidden by an occluder, lie along `axis`: the q-quantile of their
+// positions, when at least 5 do. They are an object's low parts (a wheelchair's footplate), the
+// floor left out.
+std::optional<double> low_rows_extent(const cv::Mat& depth, const slam::PinholeCamera& cam, const slam::SE3& T_wc,
+                                      const std::vector<OccluderMask>& masks, int first, int last, int x0, int x1,
+                                      double z_near, double z_far, const Eigen::Vector3d& up, double above,
+                                      const Eigen::Vector3d& axis, double q) {
+  std::vector<double> along;
+  for (int y = std::max(0, first); y <= std::min(last, depth.rows - 1); ++y)
+    for (int x = x0; x <= x1; ++x) {
+      const double d = depth.at<float>(y, x);
+      if (!(d > 0 && d >= z_near && d <= z_far)) continue;
+      const Eigen::Vector3d p = T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * d);
+      if (p.dot(up) < above || hidden_by(masks, x, y, p, d)) continue;
+      along.push_back(p.dot(axis));
+    }
+  if (along.size() < 5) return std::nullopt;
+  return percentile(along, q);
+}
+
 // Which image borders the box touches.
 struct BorderCut {
   bool left = false, right = false, top = false, bottom = false;
@@ -591,18 +612,27 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
     // box may be the object's back or the wall it stands against.
     const double sign = view.dot(R.col(k)) >= 0 ? 1.0 : -1.0;
     double front = sign > 0 ? lo(k) : hi(k);
-    // A class whose nearest parts stand low (a wheelchair's footrests and casters) shows them only in
-    // the bottom rows that box_shrink trims off: its front is where the ray through the box's bottom
-    // row meets the floor just below the box, when that lies nearer than the points' front, by less
-    // than the class's depth.
-    if (o.front_from_foot && options.foot_front_classes.count(label) && !cut.bottom && cut_axis < 0)
-      if (const auto floor = floor_below_box(depth, cam, T_wc, box, x0, x1, z, o.floor_spread)) {
-        const Eigen::Vector2d foot_pixel(0.5 * (box(0) + box(2)), box(3));
-        if (const auto foot = ray_meets_plane(cam, T_wc, foot_pixel, *floor * z, z)) {
-          const double f = foot->dot(R.col(k));
-          if (sign * (front - f) > 0 && sign * (front - f) < expected) front = f;
-        }
-      }
+    // A class whose nearest parts stand low (a wheelchair's footplate and casters) shows them only in
+    // the bottom rows that box_shrink trims off: its front is the nearer of where the ray through the
+    // box's bottom row meets the floor just below the box and where those rows' parts above the floor
+    // begin, when that lies nearer than the points' front, by less than the class's depth.
+    if (o.front_from_foot && options.foot_front_classes.count(label) && cut_axis < 0) {
+      const auto floor = cut.bottom ? std::nullopt : floor_below_box(depth, cam, T_wc, box, x0, x1, z, o.floor_spread);
+      const double points_front = front;
+      const auto take_if_nearer = [&](double f) {
+        if (sign * (front - f) > 0 && sign * (points_front - f) < expected) front = f;
+      };
+      const Eigen::Vector2d foot_pixel(0.5 * (box(0) + box(2)), box(3));
+      if (floor)
+        if (const auto foot = ray_meets_plane(cam, T_wc, foot_pixel, *floor * z, z)) take_if_nearer(foot->dot(R.col(k)));
+      // The parts standing just above the floor in the trimmed bottom rows (a footplate in front of
+      // the casters whose floor contact the bottom row shows).
+      if (o.front_from_low_rows && floor)
+        if (const auto low = low_rows_extent(depth, cam, T_wc, masks, y1 + 1, static_cast<int>(box(3)), x0, x1,
+                                             std::max(o.min_depth, samples[begin].z - expected), samples[end - 1].z, z,
+                                             *floor + o.floor_clearance, R.col(k), sign > 0 ? 0.1 : 0.9))
+          take_if_nearer(*low);
+    }
     // An axis class's points are mostly its shaft: their median depth along k is the axis.
     const double along = axis ? percentile(ax[k], 0.5) : front + sign * 0.5 * expected;
     centre += (along - centre.dot(R.col(k))) * R.col(k);

@@ -38,6 +38,7 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(measurement.bottom_face_min_length, 0, 100, "measurement.bottom_face_min_length");
   c(measurement.top_surface_tolerance, 0, 10, "measurement.top_surface_tolerance");
   c(measurement.floor_spread, 0, 10, "measurement.floor_spread");
+  c(measurement.floor_clearance, 0, 10, "measurement.floor_clearance");
   c(measurement.support_containment, 0, 1, "measurement.support_containment");
   c(measurement.support_area_ratio, 1, 1e6, "measurement.support_area_ratio");
   c(measurement.max_depth, 0.01, 1000, "measurement.max_depth");
@@ -145,6 +146,8 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   mk.read("mask_to_far_end", o.measurement.mask_to_far_end);
   mk.read("box_mask_to_far_end", o.measurement.box_mask_to_far_end);
   mk.read("front_from_foot", o.measurement.front_from_foot);
+  mk.read("front_from_low_rows", o.measurement.front_from_low_rows);
+  mk.read("floor_clearance", o.measurement.floor_clearance);
   mk.read("axes_from_planes", o.measurement.axes_from_planes);
   mk.read("anchor_side_face", o.measurement.anchor_side_face);
   mk.read("floor_spread", o.measurement.floor_spread);

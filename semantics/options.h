@@ -106,6 +106,11 @@ struct MeasurementOptions {
   // The front of a foot_front_classes class from the ray through its box's bottom row and the floor
   // just below the box (the pixels there agreeing on a height within floor_spread, m).
   bool front_from_foot = true;
+  // ... and from the nearest object pixels of the box's bottom rows (those box_shrink trims), higher
+  // than floor_clearance (m) above that floor: a wheelchair's footplate stands in front of the
+  // casters the bottom row shows.
+  bool front_from_low_rows = true;
+  double floor_clearance = 0.03;
   // A plane_axes_classes class's horizontal axes from the normals of its vertical faces, instead of
   // its points' principal axes.
   bool axes_from_planes = true;
@@ -278,8 +283,9 @@ struct SemanticOptions {
   // wheelchair's left pixels of itself to be measured as the cabinet behind it). Measured, they hide
   // it up to their far end (measurement.box_mask_to_far_end); unmeasured, all of it.
   std::set<std::string> box_masked_classes = {"iv_pole", "wheelchair"};
-  // Classes whose nearest parts stand low, in the rows box_shrink trims (a wheelchair's footrests and
-  // casters): with measurement.front_from_foot their front is where the box's bottom row meets the floor.
+  // Classes whose nearest parts stand low, in the rows box_shrink trims (a wheelchair's footplate and
+  // casters): with measurement.front_from_foot their front is where the box's bottom row meets the
+  // floor, or with measurement.front_from_low_rows where those rows' parts above the floor begin.
   std::set<std::string> foot_front_classes = {"wheelchair"};
   // Classes whose seen points crowd unevenly over faces that meet at a corner: a bed seen from its
   // foot shows its footboard, its top and one side, and the principal axes of those points ran 15

@@ -715,6 +715,40 @@ TEST(Measurement, ChairAxesAndCentreFromItsVerticalFaces) {
   EXPECT_TRUE(SemanticOptions().plane_axes_classes.count("chair"));
 }
 
+// A wheelchair seen from its front (the synthetic one's parts as boxes): its box's bottom row shows
+// where its casters meet the floor, 0.11 m behind its footplate, and the footplate stands in the
+// bottom rows that box_shrink trims. The parts just above the floor in those rows give its front.
+TEST(Measurement, WheelchairFrontFromItsFootplate) {
+  SemanticOptions o;
+  std::vector<Part> chair = {{Eigen::Vector3d(0, 0.02, 0.50), Eigen::Vector3d(0.22, 0.22, 0.03)},   // seat
+                             {Eigen::Vector3d(0, -0.23, 0.72), Eigen::Vector3d(0.22, 0.015, 0.19)},  // backrest
+                             {Eigen::Vector3d(0, 0.45, 0.12), Eigen::Vector3d(0.17, 0.06, 0.01)}};   // footplate
+  for (const double sx : {-1.0, 1.0}) {
+    chair.push_back({Eigen::Vector3d(sx * 0.30, -0.12, 0.30), Eigen::Vector3d(0.02, 0.30, 0.30)});   // wheel
+    chair.push_back({Eigen::Vector3d(sx * 0.24, 0.38, 0.08), Eigen::Vector3d(0.015, 0.02, 0.08)});   // caster
+    chair.push_back({Eigen::Vector3d(sx * 0.16, 0.36, 0.30), Eigen::Vector3d(0.012, 0.012, 0.2)});   // strut
+    chair.push_back({Eigen::Vector3d(sx * 0.25, 0.0, 0.68), Eigen::Vector3d(0.02, 0.18, 0.015)});    // armrest
+  }
+  const Eigen::Vector3d origin(5.0, 0.0, 0.0), eye(0, 0, 1.2);
+  const BoxView v = object_on_floor(chair, origin, 90, eye, std::atan2(eye.z() - 0.45, origin.x()) * 180 / M_PI);
+  ASSERT_LT(v.box(3), 470);  // the floor shows below the box
+  // Its front (+y) faces the camera (-x); its parts span y -0.42..0.51, so its centre lies 0.045 m
+  // towards the camera from the origin.
+  const double truth = origin.x() - 0.045;
+  const auto centre_x = [&]() {
+    const auto p = measure_pose_from_depth(v.depth, camera(), v.T_wc, v.box, Eigen::Vector3d::UnitZ(), "wheelchair", o);
+    return p ? p->pose.translation().x() : -1.0;
+  };
+  // The class is 1.0 m long, the model 0.93 m: the centre half a class length behind the footplate.
+  EXPECT_NEAR(centre_x(), truth + 0.035, 0.02);
+  o.measurement.front_from_low_rows = false;  // from the casters' foot
+  EXPECT_GT(centre_x(), truth + 0.1);
+  expect_switch_on_by_default("front_from_low_rows", [](const SemanticOptions& s) { return s.measurement.front_from_low_rows; });
+  EXPECT_DOUBLE_EQ(
+      load_semantic_options(YAML::Load("measurement: {floor_clearance: 0.05}"), "s.yaml").measurement.floor_clearance, 0.05);
+  test::expect_load_error_names("measurement: {floor_clearance: -1}", "semantics.measurement.floor_clearance");
+}
+
 TEST(Measurement, UpFromCameraPoses) {
   // Upright cameras looking along world x in a z-up world: camera y (down) = world -z.
   Eigen::Matrix3d R;
