@@ -106,9 +106,9 @@ struct MeasurementOptions {
   // The front of a foot_front_classes class from the ray through its box's bottom row and the floor
   // just below the box (the pixels there agreeing on a height within floor_spread, m).
   bool front_from_foot = true;
-  // ... and from the nearest object pixels of the box's bottom rows (those box_shrink trims), higher
-  // than floor_clearance (m) above that floor: a wheelchair's footplate stands in front of the
-  // casters the bottom row shows.
+  // With front_from_foot, also from the nearest object pixels of the box's bottom rows (those
+  // box_shrink trims), higher than floor_clearance (m) above that floor: a wheelchair's footplate
+  // stands in front of the casters the bottom row shows.
   bool front_from_low_rows = true;
   double floor_clearance = 0.03;
   // A plane_axes_classes class's horizontal axes from the normals of its vertical faces, instead of
