@@ -622,16 +622,17 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
       const auto take_if_nearer = [&](double f) {
         if (sign * (front - f) > 0 && sign * (points_front - f) < expected) front = f;
       };
-      const Eigen::Vector2d foot_pixel(0.5 * (box(0) + box(2)), box(3));
-      if (floor)
+      if (floor) {
+        const Eigen::Vector2d foot_pixel(0.5 * (box(0) + box(2)), box(3));
         if (const auto foot = ray_meets_plane(cam, T_wc, foot_pixel, *floor * z, z)) take_if_nearer(foot->dot(R.col(k)));
-      // The parts standing just above the floor in the trimmed bottom rows (a footplate in front of
-      // the casters whose floor contact the bottom row shows).
-      if (o.front_from_low_rows && floor)
-        if (const auto low = low_rows_extent(depth, cam, T_wc, masks, y1 + 1, static_cast<int>(box(3)), x0, x1,
-                                             std::max(o.min_depth, samples[begin].z - expected), samples[end - 1].z, z,
-                                             *floor + o.floor_clearance, R.col(k), sign > 0 ? 0.1 : 0.9))
-          take_if_nearer(*low);
+        // The parts standing just above the floor in the trimmed bottom rows (a footplate in front of
+        // the casters whose floor contact the bottom row shows).
+        if (o.front_from_low_rows)
+          if (const auto low = low_rows_extent(depth, cam, T_wc, masks, y1 + 1, static_cast<int>(box(3)), x0, x1,
+                                               std::max(o.min_depth, samples[begin].z - expected), samples[end - 1].z,
+                                               z, *floor + o.floor_clearance, R.col(k), sign > 0 ? 0.1 : 0.9))
+            take_if_nearer(*low);
+      }
     }
     // An axis class's points are mostly its shaft: their median depth along k is the axis.
     const double along = axis ? percentile(ax[k], 0.5) : front + sign * 0.5 * expected;
