@@ -91,10 +91,15 @@ std::optional<Eigen::Vector4d> projected_box(const ObjectPose& box, const Keyfra
 // keyframes, lie where a landmark of its class reported on its own projects (IoU at least
 // `min_iou`) was measured on that object (a pole cut by the border, its few placed measurements
 // low and off): it is dropped, its measurements left without a landmark, as they were without the
-// border minimums.
+// border minimums. With `other_classes`, a landmark of another class counts too in the keyframes
+// where it has no measurement: there the detector gave its object the wrong class (a bed at the
+// border detected as a chair).
 void drop_border_landmarks_on_others(std::vector<ObjectLandmark>& landmarks, const std::vector<bool>& border_only,
                                      const std::vector<ObjectMeasurement>& ms, const KeyframeViews& views,
-                                     double min_iou) {
+                                     double min_iou, bool other_classes) {
+  std::vector<std::set<int>> keyframes(landmarks.size());
+  for (size_t j = 0; j < landmarks.size(); ++j)
+    for (int id : landmarks[j].measurements) keyframes[j].insert(ms[id].keyframe);
   std::vector<bool> gone(landmarks.size(), false);
   for (size_t i = 0; i < landmarks.size(); ++i) {
     if (!border_only[i]) continue;
@@ -103,7 +108,8 @@ void drop_border_landmarks_on_others(std::vector<ObjectLandmark>& landmarks, con
       const ObjectMeasurement& m = ms[id];
       if (m.keyframe < 0 || m.keyframe >= static_cast<int>(views.T_wc.size())) continue;
       for (size_t j = 0; j < landmarks.size(); ++j) {
-        if (border_only[j] || landmarks[j].label != landmarks[i].label) continue;
+        if (border_only[j]) continue;
+        if (landmarks[j].label != landmarks[i].label && (!other_classes || keyframes[j].count(m.keyframe))) continue;
         const auto b = projected_box(landmarks[j].pose, views, m.keyframe);
         if (b && box_iou(*b, m.box) >= min_iou) {
           ++on_other;
@@ -612,7 +618,9 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
     candidates.push_back(std::move(l));
     border_only.push_back(!meets_minimums(dish_measurements[k]));
   }
-  if (views) drop_border_landmarks_on_others(candidates, border_only, ms, *views, options.association.border_reprojection_iou);
+  if (views)
+    drop_border_landmarks_on_others(candidates, border_only, ms, *views, options.association.border_reprojection_iou,
+                                    options.association.border_other_classes);
   const auto never_together = [&](const ObjectLandmark& a, const ObjectLandmark& b) {
     return never_measured_together(a.measurements, b.measurements);
   };

@@ -170,6 +170,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   ak.read("border_min_placed_measurements", o.association.border_min_placed_measurements);
   ak.read("border_touch_px", o.association.border_touch_px);
   ak.read("border_reprojection_iou", o.association.border_reprojection_iou);
+  ak.read("border_other_classes", o.association.border_other_classes);
   ak.read("merge_contained", o.association.merge_contained);
   ak.read("drop_inside_other_class", o.association.drop_inside_other_class);
   ak.read("bridge_unplaced_tracks", o.association.bridge_unplaced_tracks);

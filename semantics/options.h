@@ -172,6 +172,10 @@ struct AssociationOptions {
   // reported on its own projects (this IoU or more) was measured on that object and is dropped (a
   // pole cut by the border, doubled: IoU 0.51-0.71; a chair beside another of its row: 0.17-0.44).
   double border_reprojection_iou = 0.5;
+  // ... or where a landmark of another class reported on its own projects, in keyframes without a
+  // measurement of it: the detector gave that object a wrong class there (our addition; a bed at the
+  // left border detected as a chair twice: IoU 0.85-0.89).
+  bool border_other_classes = true;
   // Two objects of one class cannot stand in one place: a reported landmark whose position lies
   // inside the footprint of a same-class landmark with more measurements, or whose footprint holds
   // that landmark's position while the two were never measured in one keyframe (one of them turned
