@@ -633,6 +633,13 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
                                                z, *floor + o.floor_clearance, R.col(k), sign > 0 ? 0.1 : 0.9))
             take_if_nearer(*low);
       }
+      if (cut.bottom && o.centre_from_upper_part_when_cut) {
+        std::vector<double> upper;
+        for (const auto& p : world)
+          if (p.dot(z) >= hi(2) - 0.5 * cs[2]) upper.push_back(p.dot(R.col(k)));
+        if (static_cast<int>(upper.size()) >= o.min_points)
+          take_if_nearer(0.5 * (percentile(upper, 0.05) + percentile(upper, 0.95)) - sign * 0.5 * expected);
+      }
     }
     // An axis class's points are mostly its shaft: their median depth along k is the axis.
     const double along = axis ? percentile(ax[k], 0.5) : front + sign * 0.5 * expected;

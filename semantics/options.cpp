@@ -148,6 +148,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   mk.read("front_from_foot", o.measurement.front_from_foot);
   mk.read("front_from_low_rows", o.measurement.front_from_low_rows);
   mk.read("floor_clearance", o.measurement.floor_clearance);
+  mk.read("centre_from_upper_part_when_cut", o.measurement.centre_from_upper_part_when_cut);
   mk.read("axes_from_planes", o.measurement.axes_from_planes);
   mk.read("anchor_side_face", o.measurement.anchor_side_face);
   mk.read("floor_spread", o.measurement.floor_spread);

@@ -718,8 +718,8 @@ TEST(Measurement, ChairAxesAndCentreFromItsVerticalFaces) {
 // A wheelchair seen from its front (the synthetic one's parts as boxes): its box's bottom row shows
 // where its casters meet the floor, 0.11 m behind its footplate, and the footplate stands in the
 // bottom rows that box_shrink trims. The parts just above the floor in those rows give its front.
-TEST(Measurement, WheelchairFrontFromItsFootplate) {
-  SemanticOptions o;
+// The synthetic wheelchair's parts as boxes, its front towards +y: they span y -0.42..0.51.
+std::vector<Part> wheelchair_parts() {
   std::vector<Part> chair = {{Eigen::Vector3d(0, 0.02, 0.50), Eigen::Vector3d(0.22, 0.22, 0.03)},   // seat
                              {Eigen::Vector3d(0, -0.23, 0.72), Eigen::Vector3d(0.22, 0.015, 0.19)},  // backrest
                              {Eigen::Vector3d(0, 0.45, 0.12), Eigen::Vector3d(0.17, 0.06, 0.01)}};   // footplate
@@ -729,6 +729,12 @@ TEST(Measurement, WheelchairFrontFromItsFootplate) {
     chair.push_back({Eigen::Vector3d(sx * 0.16, 0.36, 0.30), Eigen::Vector3d(0.012, 0.012, 0.2)});   // strut
     chair.push_back({Eigen::Vector3d(sx * 0.25, 0.0, 0.68), Eigen::Vector3d(0.02, 0.18, 0.015)});    // armrest
   }
+  return chair;
+}
+
+TEST(Measurement, WheelchairFrontFromItsFootplate) {
+  SemanticOptions o;
+  const std::vector<Part> chair = wheelchair_parts();
   const Eigen::Vector3d origin(5.0, 0.0, 0.0), eye(0, 0, 1.2);
   const BoxView v = object_on_floor(chair, origin, 90, eye, std::atan2(eye.z() - 0.45, origin.x()) * 180 / M_PI);
   ASSERT_LT(v.box(3), 470);  // the floor shows below the box
@@ -747,6 +753,29 @@ TEST(Measurement, WheelchairFrontFromItsFootplate) {
   EXPECT_DOUBLE_EQ(
       load_semantic_options(YAML::Load("measurement: {floor_clearance: 0.05}"), "s.yaml").measurement.floor_clearance, 0.05);
   test::expect_load_error_names("measurement: {floor_clearance: -1}", "semantics.measurement.floor_clearance");
+}
+
+// A wheelchair seen from its front at 1.6 m, its box cut by the image's bottom: its footplate and
+// casters are out of view, its nearest parts (the seat's and armrests' fronts) 0.3-0.4 m behind its
+// front. The middle of its parts in the upper half of its height (seat and armrests to backrest)
+// gives its centre (measurement.centre_from_upper_part_when_cut).
+TEST(Measurement, BottomCutWheelchairCentreFromItsUpperPart) {
+  SemanticOptions o;
+  const Eigen::Vector3d origin(1.6, 0.0, 0.0), eye(0, 0, 1.2);
+  const BoxView v = object_on_floor(wheelchair_parts(), origin, 90, eye, 8);
+  ASSERT_GE(v.box(3), 478);  // cut by the bottom border
+  ASSERT_GT(v.box(1), 2);    // not at the top
+  const double truth = origin.x() - 0.045;
+  const auto centre_x = [&]() {
+    const auto p = measure_pose_from_depth(v.depth, camera(), v.T_wc, v.box, Eigen::Vector3d::UnitZ(), "wheelchair", o);
+    return p ? p->pose.translation().x() : -1.0;
+  };
+  const double from_upper = centre_x();
+  EXPECT_NEAR(from_upper, truth, 0.08);
+  o.measurement.centre_from_upper_part_when_cut = false;  // from its nearest points
+  EXPECT_GT(centre_x(), truth + 0.2);
+  expect_switch_on_by_default("centre_from_upper_part_when_cut",
+                              [](const SemanticOptions& s) { return s.measurement.centre_from_upper_part_when_cut; });
 }
 
 TEST(Measurement, UpFromCameraPoses) {
