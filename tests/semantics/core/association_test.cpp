@@ -537,7 +537,6 @@ TEST(Association, BorderLandmarkWhereAnotherClassProjectsUnmeasuredIsDropped) {
     std::vector<ObjectMeasurement> ms;
     views.T_wc.clear();
     for (int kf = 0; kf < 8; ++kf) {
-      // Keyframes 6 and 7: the camera turned right, the bed cut by the left border.
       const double yaw = 0.09 * kf;  // turning right: the bed reaches the left border in keyframe 6
       views.T_wc.push_back(
           slam::SE3(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY()).toRotationMatrix(), Eigen::Vector3d::Zero()));

@@ -715,9 +715,6 @@ TEST(Measurement, ChairAxesAndCentreFromItsVerticalFaces) {
   EXPECT_TRUE(SemanticOptions().plane_axes_classes.count("chair"));
 }
 
-// A wheelchair seen from its front (the synthetic one's parts as boxes): its box's bottom row shows
-// where its casters meet the floor, 0.11 m behind its footplate, and the footplate stands in the
-// bottom rows that box_shrink trims. The parts just above the floor in those rows give its front.
 // The synthetic wheelchair's parts as boxes, its front towards +y: they span y -0.42..0.51.
 std::vector<Part> wheelchair_parts() {
   std::vector<Part> chair = {{Eigen::Vector3d(0, 0.02, 0.50), Eigen::Vector3d(0.22, 0.22, 0.03)},   // seat
@@ -732,6 +729,9 @@ std::vector<Part> wheelchair_parts() {
   return chair;
 }
 
+// A wheelchair seen from its front (the synthetic one's parts as boxes): its box's bottom row shows
+// where its casters meet the floor, 0.11 m behind its footplate, and the footplate stands in the
+// bottom rows that box_shrink trims. The parts just above the floor in those rows give its front.
 TEST(Measurement, WheelchairFrontFromItsFootplate) {
   SemanticOptions o;
   const std::vector<Part> chair = wheelchair_parts();
