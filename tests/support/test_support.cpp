@@ -1,11 +1,12 @@
 #include "tests/support/test_support.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
 #include <cstdlib>
-#include <sys/wait.h>
 
 namespace wardmap::test {
 
@@ -30,12 +31,39 @@ fs::path source_dir() { return env_or("WARDMAP_SOURCE_DIR", fs::path(WARDMAP_PRO
 
 fs::path binary_dir() { return fs::path(WARDMAP_BINARY_DIR); }
 
+// This test process's scratch folders live under one root.
+static fs::path process_scratch_root() {
+  return fs::temp_directory_path() / ("wardmap-test-" + std::to_string(::getpid()));
+}
+
+namespace {
+// Removes the process's scratch folders after its last test when every test passed (ctest runs each
+// test in its own process, so they would pile up in the temporary folder); a failed run keeps them
+// to be looked at, and says where.
+class ScratchCleanup : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    const fs::path root = process_scratch_root();
+    std::error_code ec;
+    if (!fs::exists(root, ec)) return;
+    if (!::testing::UnitTest::GetInstance()->Passed()) {
+      std::fprintf(stderr, "scratch files of the failed test kept in %s\n", root.c_str());
+      return;
+    }
+    fs::remove_all(root, ec);
+    if (ec) std::fprintf(stderr, "could not remove scratch folder %s: %s\n", root.c_str(), ec.message().c_str());
+  }
+};
+[[maybe_unused]] ::testing::Environment* const scratch_cleanup =
+    ::testing::AddGlobalTestEnvironment(new ScratchCleanup);
+}  // namespace
+
 fs::path scratch_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "scratch";
   for (char& c : name)
     if (c == '/') c = '_';
-  fs::path p = fs::temp_directory_path() / ("wardmap-test-" + std::to_string(::getpid())) / name;
+  fs::path p = process_scratch_root() / name;
   fs::remove_all(p);
   fs::create_directories(p);
   return p;

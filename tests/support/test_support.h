@@ -14,7 +14,8 @@ std::filesystem::path shared_models_dir();
 std::filesystem::path source_dir();
 // The build tree (for the wardmap executable).
 std::filesystem::path binary_dir();
-// A fresh, empty scratch folder unique to the running test.
+// A fresh, empty scratch folder unique to the running test; removed after the process's last
+// test when all its tests passed, kept (and named on stderr) when one failed.
 std::filesystem::path scratch_dir();
 
 // Run a shell command, capture stdout+stderr; returns the exit code.
