@@ -160,16 +160,10 @@ int root_of(std::vector<int>& parent, int i) {
   return i;
 }
 
-}  // namespace
-
-int link_through_unplaced_tracks(const std::vector<std::vector<int>>& unplaced,
-                                 const std::vector<std::string>& unplaced_labels,
-                                 const std::vector<std::string>& dish_labels,
-                                 const std::vector<std::vector<int>>& dish_measurements,
-                                 const std::vector<bool>& reportable,
-                                 const std::function<bool(const std::vector<int>&, const std::vector<int>&)>& never_together,
-                                 std::vector<int>& dish_of) {
-  // Tracks: unplaced group objects of one class sharing a detection.
+// Tracks across groups: unplaced group objects of one class sharing a detection (an overlapping
+// keyframe) are one; returns each one's root in the forest.
+std::vector<int> unplaced_track_roots(const std::vector<std::vector<int>>& unplaced,
+                                      const std::vector<std::string>& unplaced_labels) {
   std::vector<int> track(unplaced.size());
   for (size_t i = 0; i < track.size(); ++i) track[i] = static_cast<int>(i);
   std::map<int, int> holder;  // measurement id -> an unplaced group object holding it
@@ -179,11 +173,23 @@ int link_through_unplaced_tracks(const std::vector<std::vector<int>>& unplaced,
       if (!fresh && unplaced_labels[it->second] == unplaced_labels[i])
         track[root_of(track, static_cast<int>(i))] = root_of(track, it->second);
     }
+  for (size_t i = 0; i < track.size(); ++i) track[i] = root_of(track, static_cast<int>(i));
+  return track;
+}
+
+}  // namespace
+
+int link_through_unplaced_tracks(
+    const std::vector<std::vector<int>>& unplaced, const std::vector<std::string>& unplaced_labels,
+    const std::vector<std::string>& dish_labels, const std::vector<std::vector<int>>& dish_measurements,
+    const std::vector<bool>& reportable,
+    const std::function<bool(const std::vector<int>&, const std::vector<int>&)>& never_together,
+    std::vector<int>& dish_of) {
+  const std::vector<int> track = unplaced_track_roots(unplaced, unplaced_labels);
   std::map<int, std::set<int>> touched;  // track root -> same-class dishes its detections belong to
   for (size_t i = 0; i < unplaced.size(); ++i)
     for (int id : unplaced[i])
-      if (dish_of[id] >= 0 && dish_labels[dish_of[id]] == unplaced_labels[i])
-        touched[root_of(track, static_cast<int>(i))].insert(dish_of[id]);
+      if (dish_of[id] >= 0 && dish_labels[dish_of[id]] == unplaced_labels[i]) touched[track[i]].insert(dish_of[id]);
 
   std::vector<int> dish(dish_labels.size());
   for (size_t k = 0; k < dish.size(); ++k) dish[k] = static_cast<int>(k);
@@ -201,6 +207,37 @@ int link_through_unplaced_tracks(const std::vector<std::vector<int>>& unplaced,
   for (auto& d : dish_of)
     if (d >= 0) d = root_of(dish, d);
   return merged;
+}
+
+// Where an upright box's bottom lies along its up axis (poses are upright: their z axis is up).
+double bottom_height(const ObjectPose& box) {
+  return box.pose.translation().dot(box.pose.rotation_matrix().col(2)) - 0.5 * box.size(2);
+}
+
+std::optional<double> floor_height(const std::vector<ObjectLandmark>& landmarks, const std::set<std::string>& classes) {
+  std::vector<double> bottoms;
+  for (const auto& l : landmarks)
+    if (classes.count(l.label)) bottoms.push_back(bottom_height(l.pose));
+  if (bottoms.size() < 2) return std::nullopt;
+  std::nth_element(bottoms.begin(), bottoms.begin() + bottoms.size() / 2, bottoms.end());
+  return bottoms[bottoms.size() / 2];
+}
+
+std::vector<std::pair<std::string, std::vector<int>>> tracks_without_landmark(
+    const std::vector<std::vector<int>>& unplaced, const std::vector<std::string>& unplaced_labels,
+    const std::vector<int>& dish_of) {
+  const std::vector<int> track = unplaced_track_roots(unplaced, unplaced_labels);
+  std::map<int, std::set<int>> ids;  // track root -> its measurement ids
+  std::set<int> held;                // roots of tracks with a measurement in a dish
+  for (size_t i = 0; i < unplaced.size(); ++i)
+    for (int id : unplaced[i]) {
+      ids[track[i]].insert(id);
+      if (dish_of[id] >= 0) held.insert(track[i]);
+    }
+  std::vector<std::pair<std::string, std::vector<int>>> out;
+  for (const auto& [root, set] : ids)
+    if (!held.count(root)) out.emplace_back(unplaced_labels[root], std::vector<int>(set.begin(), set.end()));
+  return out;
 }
 
 void reassign_by_projection(std::vector<ObjectLandmark>& landmarks, const std::vector<ObjectMeasurement>& ms,
@@ -551,8 +588,13 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
           dish_of[id] = k;
         }
   const AssociationOptions& ao = options.association;
+  // A landmark none of whose measurements is placed (one made of a track the sampler never saw) is
+  // placed by its side-cut measurements (association.border_side_cut_poses).
   const auto placed_count = [&](const std::vector<int>& ids) {
-    return static_cast<int>(std::count_if(ids.begin(), ids.end(), [&](int id) { return ms[id].pose.has_value(); }));
+    const auto count = [&](auto has) { return static_cast<int>(std::count_if(ids.begin(), ids.end(), has)); };
+    const int placed = count([&](int id) { return ms[id].pose.has_value(); });
+    if (placed > 0 || !ao.border_side_cut_poses) return placed;
+    return count([&](int id) { return ms[id].side_cut_pose.has_value(); });
   };
   const auto never_measured_together = [&](const std::vector<int>& a, const std::vector<int>& b) {
     return !detected_apart_in_one_keyframe(keyframe_measurements_of(a, ms), keyframe_measurements_of(b, ms));
@@ -593,6 +635,12 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
         ids.push_back(id);
         poses.push_back(*ms[id].pose);
       }
+    if (ids.empty() && ao.border_side_cut_poses)
+      for (int id : l.measurements)
+        if (ms[id].side_cut_pose) {
+          ids.push_back(id);
+          poses.push_back(*ms[id].side_cut_pose);
+        }
     // Assoc. Eq. 4-6, or HDP-SLAM's first measurement.
     const int pick = hdp_only ? 0 : select_landmark_pose(poses, options.pose_selection);
     l.pose_measurement = ids[pick];
@@ -618,6 +666,25 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
     candidates.push_back(std::move(l));
     border_only.push_back(!meets_minimums(dish_measurements[k]));
   }
+  // A thin object seen only at a side border never reaches the sampler: its track, held by no
+  // landmark, is reported from its side-cut measurements (association.border_side_cut_poses), when
+  // it stands on the floor the other thin landmarks stand on. Those boxes are often cut at the
+  // bottom too and completed down from their top, which is the object's only where the side cut
+  // leaves it in view (not a pole's base in a corner, its shaft out of view).
+  const std::optional<double> floor = floor_height(candidates, options.thin_classes);
+  if (ao.border_side_cut_poses && views && !hdp_only && floor)
+    for (auto& [label, ids] : tracks_without_landmark(unplaced, unplaced_labels, dish_of)) {
+      if (!options.thin_classes.count(label) || !mostly_at_side_border(ids, ms, views->camera, ao.border_touch_px) ||
+          !reportable(ids, label))
+        continue;
+      ObjectLandmark l;
+      l.label = label;
+      l.measurements = std::move(ids);
+      place(l);
+      if (std::abs(bottom_height(l.pose) - *floor) > ao.border_side_cut_floor_tolerance) continue;
+      candidates.push_back(std::move(l));
+      border_only.push_back(true);
+    }
   if (views)
     drop_border_landmarks_on_others(candidates, border_only, ms, *views, options.association.border_reprojection_iou,
                                     options.association.border_other_classes);

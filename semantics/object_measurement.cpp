@@ -2,9 +2,8 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <array>
-#include <functional>
 #include <cmath>
+#include <functional>
 #include <map>
 
 #include "semantics/object_metrics.h"
@@ -330,13 +329,12 @@ bool surface_reaches_bottom_border(const cv::Mat& depth, const slam::PinholeCame
   return std::abs(percentile(hs, 0.5) - height) <= tolerance;
 }
 
-}  // namespace
-
-std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const slam::PinholeCamera& cam,
-                                                  const slam::SE3& T_wc, const Eigen::Vector4d& box,
-                                                  const Eigen::Vector3d& up, const std::string& label,
-                                                  const SemanticOptions& options,
-                                                  const std::vector<Occluder>& occluders) {
+// measure_pose_from_depth; with `thin_side_cut_as_uncut`, only for a thin class's box cut at one
+// side border, measured as if that border did not cut it (measure_thin_side_cut).
+std::optional<ObjectPose> measure_pose(const cv::Mat& depth, const slam::PinholeCamera& cam, const slam::SE3& T_wc,
+                                       const Eigen::Vector4d& box, const Eigen::Vector3d& up, const std::string& label,
+                                       const SemanticOptions& options, const std::vector<Occluder>& occluders,
+                                       bool thin_side_cut_as_uncut) {
   const MeasurementOptions& o = options.measurement;
   if (depth.empty() || depth.type() != CV_32F) return std::nullopt;
   const double w = box(2) - box(0), h = box(3) - box(1);
@@ -359,6 +357,10 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
     cut.bottom = true;
   const bool completes = sized && o.complete_depth_with_class_size;
   const bool thin = options.thin_classes.count(label) > 0;
+  if (thin_side_cut_as_uncut) {
+    if (!thin || cut.left == cut.right) return std::nullopt;
+    cut.left = cut.right = false;
+  }
   const bool side = cut.left || cut.right;
   if ((side && (!completes || !o.complete_side_cuts || thin)) ||
       (cut.left && cut.right) ||
@@ -676,6 +678,8 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
   return ObjectPose{slam::SE3(R, centre), size};
 }
 
+}  // namespace
+
 double box_median_depth(const cv::Mat& depth, const Eigen::Vector4d& box, const MeasurementOptions& o,
                         const Eigen::Vector4d* exclude) {
   if (depth.empty()) return 0;
@@ -729,13 +733,31 @@ std::vector<std::vector<int>> nearer_overlapping_detections(const cv::Mat& depth
   return out;
 }
 
+std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const slam::PinholeCamera& camera,
+                                                  const slam::SE3& T_wc, const Eigen::Vector4d& box,
+                                                  const Eigen::Vector3d& up, const std::string& label,
+                                                  const SemanticOptions& options,
+                                                  const std::vector<Occluder>& occluders) {
+  return measure_pose(depth, camera, T_wc, box, up, label, options, occluders, false);
+}
+
+std::optional<ObjectPose> measure_thin_side_cut(const cv::Mat& depth, const slam::PinholeCamera& camera,
+                                                const slam::SE3& T_wc, const Eigen::Vector4d& box,
+                                                const Eigen::Vector3d& up, const std::string& label,
+                                                const SemanticOptions& options,
+                                                const std::vector<Occluder>& occluders) {
+  return measure_pose(depth, camera, T_wc, box, up, label, options, occluders, true);
+}
+
 std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& depth, const slam::PinholeCamera& camera,
                                                               const slam::SE3& T_wc,
                                                               const std::vector<Eigen::Vector4d>& boxes,
                                                               const std::vector<std::string>& labels,
-                                                              const Eigen::Vector3d& up, const SemanticOptions& options) {
+                                                              const Eigen::Vector3d& up, const SemanticOptions& options,
+                                                              std::vector<std::optional<ObjectPose>>* side_cut_poses) {
   const size_t n = boxes.size();
   std::vector<std::optional<ObjectPose>> poses(n);
+  if (side_cut_poses) side_cut_poses->assign(n, std::nullopt);
   if (depth.empty()) return poses;
   std::vector<bool> supports(n);
   for (size_t i = 0; i < n; ++i) supports[i] = options.support_classes.count(labels[i]) > 0;
@@ -760,6 +782,9 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
       occluders.push_back({boxes[j], done[j] ? poses[j] : std::nullopt, labels[j] == labels[next],
                            options.box_masked_classes.count(labels[j]) > 0});
     poses[next] = measure_pose_from_depth(depth, camera, T_wc, boxes[next], up, labels[next], options, occluders);
+    if (side_cut_poses && !poses[next])
+      (*side_cut_poses)[next] =
+          measure_thin_side_cut(depth, camera, T_wc, boxes[next], up, labels[next], options, occluders);
     done[next] = true;
   }
   drop_coincident_poses(poses, boxes, labels, up, camera, T_wc, options);

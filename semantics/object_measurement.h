@@ -30,6 +30,9 @@ struct ObjectMeasurement {
   float score = 0;
   Eigen::VectorXf embedding;         // L2-normalised; empty when no embedder ran
   std::optional<ObjectPose> pose;    // empty: degenerate (no depth, too few points)
+  // A thin class's box cut at the left or right border (no pose) measured as if uncut: only for a
+  // landmark no placed measurement holds (association.border_side_cut_poses).
+  std::optional<ObjectPose> side_cut_pose;
   int gt_instance = -1;              // true object id when the detector knows it (synthetic data)
 };
 
@@ -62,6 +65,17 @@ std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const sl
                                                   const SemanticOptions& options,
                                                   const std::vector<Occluder>& occluders = {});
 
+// A box of a thin class (thin_classes: a chair, a pole, a wheelchair) cut by the left or the right
+// image border gets no pose from measure_pose_from_depth: its nearest points show no face to
+// complete along. This measures it as if that border did not cut it (its nearest surface pushed
+// back by the class's depth), for a landmark that no other measurement places
+// (association.border_side_cut_poses); none for any other box.
+std::optional<ObjectPose> measure_thin_side_cut(const cv::Mat& depth, const slam::PinholeCamera& camera,
+                                                const slam::SE3& T_wc, const Eigen::Vector4d& box,
+                                                const Eigen::Vector3d& up, const std::string& label,
+                                                const SemanticOptions& options,
+                                                const std::vector<Occluder>& occluders = {});
+
 // Median depth of the trimmed box (0 when it has no valid depth): orders a keyframe's detections
 // front to back, so that each one is measured without the pixels of the nearer ones. With
 // `exclude`, the pixels inside that box are left out (0 when fewer than min_points remain).
@@ -93,11 +107,12 @@ void drop_coincident_poses(std::vector<std::optional<ObjectPose>>& poses, const 
 
 // Assoc. Eq. 1 "Pose" for all detections of one keyframe: front to back, so that each is measured
 // without the pixels of the nearer ones, masked by their measured 3-D boxes when they have one.
-std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& depth, const slam::PinholeCamera& camera,
-                                                              const slam::SE3& T_wc,
-                                                              const std::vector<Eigen::Vector4d>& boxes,
-                                                              const std::vector<std::string>& labels,
-                                                              const Eigen::Vector3d& up, const SemanticOptions& options);
+// With `side_cut_poses`, also each unplaced thin class's side-cut box measured as if uncut
+// (measure_thin_side_cut; empty for the others); they mask nothing.
+std::vector<std::optional<ObjectPose>> measure_keyframe_poses(
+    const cv::Mat& depth, const slam::PinholeCamera& camera, const slam::SE3& T_wc,
+    const std::vector<Eigen::Vector4d>& boxes, const std::vector<std::string>& labels, const Eigen::Vector3d& up,
+    const SemanticOptions& options, std::vector<std::optional<ObjectPose>>* side_cut_poses = nullptr);
 
 // The world's up direction from camera poses, which seldom roll but may look down: orthogonal to
 // their right (x) axes once those span a plane (the camera has turned), on the side of the mean of

@@ -63,6 +63,7 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(association.border_min_placed_measurements, 1, 10000, "association.border_min_placed_measurements");
   c(association.border_touch_px, 0, 1e4, "association.border_touch_px");
   c(association.border_reprojection_iou, 0, 1, "association.border_reprojection_iou");
+  c(association.border_side_cut_floor_tolerance, 0.01, 10, "association.border_side_cut_floor_tolerance");
   c(association.reproject_min_iou, 0, 1, "association.reproject_min_iou");
   c(association.reproject_margin, 0, 1, "association.reproject_margin");
   c(association.chains, 1, 64, "association.chains");
@@ -172,6 +173,8 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   ak.read("border_touch_px", o.association.border_touch_px);
   ak.read("border_reprojection_iou", o.association.border_reprojection_iou);
   ak.read("border_other_classes", o.association.border_other_classes);
+  ak.read("border_side_cut_poses", o.association.border_side_cut_poses);
+  ak.read("border_side_cut_floor_tolerance", o.association.border_side_cut_floor_tolerance);
   ak.read("merge_contained", o.association.merge_contained);
   ak.read("drop_inside_other_class", o.association.drop_inside_other_class);
   ak.read("bridge_unplaced_tracks", o.association.bridge_unplaced_tracks);

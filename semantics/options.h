@@ -182,6 +182,17 @@ struct AssociationOptions {
   // measurement of it: the detector gave that object a wrong class there (our addition; a bed at the
   // left border detected as a chair twice: IoU 0.85-0.89).
   bool border_other_classes = true;
+  // A chair, pole or wheelchair cut by a side border gets no pose, so one seen only there (in a
+  // corner of every view) never reaches the sampler. A track of such unplaced measurements that no
+  // landmark holds, seen mostly at a side border, is reported through the side-border minimums from
+  // its cut boxes measured as if uncut (ObjectMeasurement::side_cut_pose), which place nothing else
+  // (our addition; placing them for every use mapped the corner chairs but doubled border fragments
+  // and changed other measurements' occluders: docs/EXPERIMENTS.md).
+  bool border_side_cut_poses = true;
+  // ... and only where its box's bottom lies within this of the floor the other thin landmarks stand
+  // on (m; their median bottom; none reported with fewer than two of them): a pole's base in a
+  // corner, its shaft out of view, is completed down from the base's top, 1.7 m under the floor.
+  double border_side_cut_floor_tolerance = 0.25;
   // Two objects of one class cannot stand in one place: a reported landmark whose position lies
   // inside the footprint of a same-class landmark with more measurements, or whose footprint holds
   // that landmark's position while the two were never measured in one keyframe (one of them turned

@@ -49,7 +49,8 @@ void SemanticMapper::add_keyframe(const KeyframeInput& kf) {
   times_.embedding.push_back(seconds_since(t0));
 
   t0 = std::chrono::steady_clock::now();
-  auto poses = measure_keyframe_poses(kf.depth, camera_, kf.T_wc, boxes, labels, up, options_);
+  std::vector<std::optional<ObjectPose>> side_cut_poses;
+  auto poses = measure_keyframe_poses(kf.depth, camera_, kf.T_wc, boxes, labels, up, options_, &side_cut_poses);
   for (size_t i = 0; i < dets.size(); ++i) {
     ObjectMeasurement m;
     m.id = static_cast<int>(measurements_.size());
@@ -61,6 +62,7 @@ void SemanticMapper::add_keyframe(const KeyframeInput& kf) {
     m.embedding = std::move(embeddings[i]);
     m.gt_instance = dets[i].gt_instance;
     m.pose = std::move(poses[i]);
+    m.side_cut_pose = std::move(side_cut_poses[i]);
     measurements_.push_back(std::move(m));
   }
   times_.measurement.push_back(seconds_since(t0));

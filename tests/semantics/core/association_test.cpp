@@ -584,6 +584,95 @@ TEST(Association, BorderLandmarkWhereAnotherClassProjectsUnmeasuredIsDropped) {
                    .association.border_other_classes);
 }
 
+// A chair seen only where the left border cuts it (keyframes 6 and 7 of a right turn) has no
+// placed measurement, so its track never reaches the sampler; its boxes measured as if uncut
+// (side_cut_pose) report it (association.border_side_cut_poses) where it stands on the floor that
+// two chairs in view all along stand on. A bed is placed as usual. A chair placed in the keyframe
+// before is a landmark of its own already, and its border boxes add nothing.
+TEST(Association, ThinObjectSeenOnlyAtASideBorderIsPlacedByItsSideCuts) {
+  const slam::PinholeCamera cam = test::vga_camera();
+  // Camera frame y down, the floor 1.2 m below the camera; boxes upright (their z axis up).
+  const Eigen::Quaterniond upright(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()));
+  const auto box_at = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& size) {
+    return ObjectPose{slam::SE3(upright, p), size};
+  };
+  const Eigen::Vector3d chair_size(0.5, 0.5, 0.85), chair(0.1, 1.2 - 0.425, 4.0);
+  const ObjectPose bed = box_at(Eigen::Vector3d(0.9, 0.9, 6.5), Eigen::Vector3d(1.0, 2.0, 0.6));
+  const std::vector<ObjectPose> row = {box_at(Eigen::Vector3d(2.6, chair.y(), 6.0), chair_size),
+                                       box_at(Eigen::Vector3d(3.4, chair.y(), 6.6), chair_size)};
+  const ObjectPose chair_truth = box_at(chair, chair_size);
+  // Measured as if uncut: its nearest surface's half, pushed back by the class's depth.
+  const ObjectPose side_cut = box_at(chair + Eigen::Vector3d(0.15, 0.03, 0.1), chair_size);
+  KeyframeViews views{cam, {}};
+  for (int kf = 0; kf < 8; ++kf)
+    views.T_wc.push_back(
+        slam::SE3(Eigen::AngleAxisd(0.09 * kf, Eigen::Vector3d::UnitY()).toRotationMatrix(), Eigen::Vector3d::Zero()));
+  const auto measurements = [&](const std::optional<ObjectPose>& side_cut_pose, bool placed_before) {
+    std::vector<ObjectMeasurement> ms;
+    const auto add = [&](int kf, const std::string& label, const ObjectPose& truth, int gt, bool placed) {
+      ObjectMeasurement m;
+      m.id = static_cast<int>(ms.size());
+      m.keyframe = kf;
+      m.timestamp = kf * 0.1;
+      m.box = *project_box(truth, cam, views.T_wc[kf]);
+      m.label = label;
+      m.score = 0.9f;
+      m.embedding = Eigen::VectorXf::Unit(8, gt);
+      m.gt_instance = gt;
+      if (placed) m.pose = truth;
+      ms.push_back(m);
+    };
+    for (int kf = 0; kf < 8; ++kf) {
+      add(kf, "bed", bed, 0, true);
+      add(kf, "chair", row[0], 2, true);
+      add(kf, "chair", row[1], 3, true);
+      if (kf == 5 && placed_before) add(kf, "chair", chair_truth, 1, true);
+      if (kf >= 6) {
+        add(kf, "chair", chair_truth, 1, false);
+        ms.back().side_cut_pose = side_cut_pose;
+      }
+    }
+    return ms;
+  };
+  SemanticOptions o;
+  const auto groups = groups_of(8, o.groups.size, o.groups.overlap);
+  // The landmarks off the row: the border chair's, if any.
+  const auto border_chairs = [&](const std::vector<ObjectMeasurement>& ms, const SemanticOptions& opt) {
+    std::vector<ObjectLandmark> out;
+    const auto landmarks = associate_objects(ms, groups, opt, &views).landmarks;
+    EXPECT_EQ(std::count_if(landmarks.begin(), landmarks.end(), [](const auto& l) { return l.label == "bed"; }), 1);
+    for (const auto& lm : landmarks)
+      if (lm.label == "chair" && lm.pose.pose.translation().z() < 5) out.push_back(lm);
+    EXPECT_EQ(landmarks.size(), 3 + out.size());
+    return out;
+  };
+  const auto seen = measurements(side_cut, false);
+  for (const auto& m : seen)
+    if (m.gt_instance == 1) ASSERT_LE(m.box(0), 0.5) << "keyframe " << m.keyframe;  // cut by the left border
+  const auto found = border_chairs(seen, o);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].measurements.size(), 2u);
+  EXPECT_LT((found[0].pose.pose.translation() - side_cut.pose.translation()).norm(), 1e-9);
+  EXPECT_TRUE(border_chairs(measurements(std::nullopt, false), o).empty());  // nothing to place it by
+  // Completed down from a top that was not its own: 1.7 m under the floor.
+  const ObjectPose sunk = box_at(chair + Eigen::Vector3d(0, 1.7, 0), chair_size);
+  EXPECT_TRUE(border_chairs(measurements(sunk, false), o).empty());
+  SemanticOptions off = o;
+  off.association.border_side_cut_poses = false;
+  EXPECT_TRUE(border_chairs(seen, off).empty());
+  const auto before = border_chairs(measurements(side_cut, true), o);
+  ASSERT_EQ(before.size(), 1u);
+  EXPECT_LT((before[0].pose.pose.translation() - chair).norm(), 1e-9);  // placed by its uncut measurement
+  EXPECT_FALSE(load_semantic_options(YAML::Load("association: {border_side_cut_poses: false}"), "s.yaml")
+                   .association.border_side_cut_poses);
+  test::expect_load_error_names("association: {border_side_cut_poses: 3}", "association.border_side_cut_poses");
+  EXPECT_DOUBLE_EQ(load_semantic_options(YAML::Load("association: {border_side_cut_floor_tolerance: 0.4}"), "s.yaml")
+                       .association.border_side_cut_floor_tolerance,
+                   0.4);
+  test::expect_load_error_names("association: {border_side_cut_floor_tolerance: 0}",
+                                "association.border_side_cut_floor_tolerance");
+}
+
 // A bed tracked through keyframes where none of its boxes got a pose: measurements 0-2 form
 // landmark 0, 7-9 landmark 1 (measured 2 m off), and the unplaced group objects {2, 3, 4} and
 // {4, 5, 6, 7} (sharing detections 2, 4 and 7 through overlapping keyframes) carry the track from
