@@ -209,10 +209,22 @@ int link_through_unplaced_tracks(
   return merged;
 }
 
+namespace {
+
 // Where an upright box's bottom lies along its up axis (poses are upright: their z axis is up).
 double bottom_height(const ObjectPose& box) {
   return box.pose.translation().dot(box.pose.rotation_matrix().col(2)) - 0.5 * box.size(2);
 }
+
+// How far apart two upright boxes' centres stand, across `a`'s up axis.
+double horizontal_distance(const ObjectPose& a, const ObjectPose& b) {
+  const Eigen::Vector3d up = a.pose.rotation_matrix().col(2);
+  Eigen::Vector3d d = a.pose.translation() - b.pose.translation();
+  d -= d.dot(up) * up;
+  return d.norm();
+}
+
+}  // namespace
 
 std::optional<double> floor_height(const std::vector<ObjectLandmark>& landmarks, const std::set<std::string>& classes) {
   std::vector<double> bottoms;
@@ -668,20 +680,34 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   }
   // A thin object seen only at a side border never reaches the sampler: its track, held by no
   // landmark, is reported from its side-cut measurements (association.border_side_cut_poses), when
-  // it stands on the floor the other thin landmarks stand on. Those boxes are often cut at the
-  // bottom too and completed down from their top, which is the object's only where the side cut
-  // leaves it in view (not a pole's base in a corner, its shaft out of view).
+  // it stands on the floor the other thin landmarks stand on, and apart from every landmark of its
+  // class never detected beside it in one keyframe. Those boxes are often cut at the bottom too and
+  // completed down from their top, which is the object's only where the side cut leaves it in view;
+  // a track that passes out of view and back (a chair of a row passed close) may belong to a
+  // landmark that its side cuts place 0.3 m off, as far as from the next chair of a row.
+  // Not the axis classes: a pole's side cut is a sliver of its base or shaft, measured on the base's
+  // top or the wall behind.
   const std::optional<double> floor = floor_height(candidates, options.thin_classes);
+  const size_t reported = candidates.size();
   if (ao.border_side_cut_poses && views && !hdp_only && floor)
     for (auto& [label, ids] : tracks_without_landmark(unplaced, unplaced_labels, dish_of)) {
-      if (!options.thin_classes.count(label) || !mostly_at_side_border(ids, ms, views->camera, ao.border_touch_px) ||
-          !reportable(ids, label))
+      if (!options.thin_classes.count(label) || options.axis_classes.count(label) ||
+          !mostly_at_side_border(ids, ms, views->camera, ao.border_touch_px) || !reportable(ids, label))
         continue;
       ObjectLandmark l;
       l.label = label;
       l.measurements = std::move(ids);
       place(l);
       if (std::abs(bottom_height(l.pose) - *floor) > ao.border_side_cut_floor_tolerance) continue;
+      const auto size = options.class_sizes.find(label);
+      const double width = size != options.class_sizes.end() ? std::min(size->second[0], size->second[1])
+                                                             : std::min(l.pose.size(0), l.pose.size(1));
+      if (std::any_of(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(reported),
+                      [&](const ObjectLandmark& o) {
+                        return o.label == label && horizontal_distance(o.pose, l.pose) < width &&
+                               never_measured_together(o.measurements, l.measurements);
+                      }))
+        continue;
       candidates.push_back(std::move(l));
       border_only.push_back(true);
     }

@@ -587,8 +587,9 @@ TEST(Association, BorderLandmarkWhereAnotherClassProjectsUnmeasuredIsDropped) {
 // A chair seen only where the left border cuts it (keyframes 6 and 7 of a right turn) has no
 // placed measurement, so its track never reaches the sampler; its boxes measured as if uncut
 // (side_cut_pose) report it (association.border_side_cut_poses) where it stands on the floor that
-// two chairs in view all along stand on. A bed is placed as usual. A chair placed in the keyframe
-// before is a landmark of its own already, and its border boxes add nothing.
+// two chairs in view all along stand on, and apart from them unless detected beside them. A bed is
+// placed as usual. A chair placed in the keyframe before is a landmark of its own already, and its
+// border boxes add nothing. A pole's side cuts (a sliver of its base or shaft) report nothing.
 TEST(Association, ThinObjectSeenOnlyAtASideBorderIsPlacedByItsSideCuts) {
   const slam::PinholeCamera cam = test::vga_camera();
   // Camera frame y down, the floor 1.2 m below the camera; boxes upright (their z axis up).
@@ -607,7 +608,8 @@ TEST(Association, ThinObjectSeenOnlyAtASideBorderIsPlacedByItsSideCuts) {
   for (int kf = 0; kf < 8; ++kf)
     views.T_wc.push_back(
         slam::SE3(Eigen::AngleAxisd(0.09 * kf, Eigen::Vector3d::UnitY()).toRotationMatrix(), Eigen::Vector3d::Zero()));
-  const auto measurements = [&](const std::optional<ObjectPose>& side_cut_pose, bool placed_before) {
+  const auto measurements = [&](const std::optional<ObjectPose>& side_cut_pose, bool placed_before,
+                                const std::string& label = "chair", bool row_seen_at_border = true) {
     std::vector<ObjectMeasurement> ms;
     const auto add = [&](int kf, const std::string& label, const ObjectPose& truth, int gt, bool placed) {
       ObjectMeasurement m;
@@ -624,11 +626,11 @@ TEST(Association, ThinObjectSeenOnlyAtASideBorderIsPlacedByItsSideCuts) {
     };
     for (int kf = 0; kf < 8; ++kf) {
       add(kf, "bed", bed, 0, true);
-      add(kf, "chair", row[0], 2, true);
+      if (kf < 6 || row_seen_at_border) add(kf, "chair", row[0], 2, true);
       add(kf, "chair", row[1], 3, true);
       if (kf == 5 && placed_before) add(kf, "chair", chair_truth, 1, true);
       if (kf >= 6) {
-        add(kf, "chair", chair_truth, 1, false);
+        add(kf, label, chair_truth, 1, false);
         ms.back().side_cut_pose = side_cut_pose;
       }
     }
@@ -636,19 +638,22 @@ TEST(Association, ThinObjectSeenOnlyAtASideBorderIsPlacedByItsSideCuts) {
   };
   SemanticOptions o;
   const auto groups = groups_of(8, o.groups.size, o.groups.overlap);
-  // The landmarks off the row: the border chair's, if any.
+  // The landmarks of the border chair's measurements, if any.
   const auto border_chairs = [&](const std::vector<ObjectMeasurement>& ms, const SemanticOptions& opt) {
     std::vector<ObjectLandmark> out;
     const auto landmarks = associate_objects(ms, groups, opt, &views).landmarks;
     EXPECT_EQ(std::count_if(landmarks.begin(), landmarks.end(), [](const auto& l) { return l.label == "bed"; }), 1);
     for (const auto& lm : landmarks)
-      if (lm.label == "chair" && lm.pose.pose.translation().z() < 5) out.push_back(lm);
+      if (std::any_of(lm.measurements.begin(), lm.measurements.end(), [&](int id) { return ms[id].gt_instance == 1; }))
+        out.push_back(lm);
     EXPECT_EQ(landmarks.size(), 3 + out.size());
     return out;
   };
   const auto seen = measurements(side_cut, false);
   for (const auto& m : seen)
-    if (m.gt_instance == 1) ASSERT_LE(m.box(0), 0.5) << "keyframe " << m.keyframe;  // cut by the left border
+    if (m.gt_instance == 1) {
+      ASSERT_LE(m.box(0), 0.5) << "keyframe " << m.keyframe;  // cut by the left border
+    }
   const auto found = border_chairs(seen, o);
   ASSERT_EQ(found.size(), 1u);
   EXPECT_EQ(found[0].measurements.size(), 2u);
@@ -657,6 +662,12 @@ TEST(Association, ThinObjectSeenOnlyAtASideBorderIsPlacedByItsSideCuts) {
   // Completed down from a top that was not its own: 1.7 m under the floor.
   const ObjectPose sunk = box_at(chair + Eigen::Vector3d(0, 1.7, 0), chair_size);
   EXPECT_TRUE(border_chairs(measurements(sunk, false), o).empty());
+  // Placed 0.3 m from a chair of the row (their footprints 0.5 m wide would overlap): that chair's
+  // boxes, unless that chair was detected beside them.
+  const ObjectPose beside_row = box_at(row[0].pose.translation() + Eigen::Vector3d(0.3, 0, 0), chair_size);
+  EXPECT_TRUE(border_chairs(measurements(beside_row, false, "chair", false), o).empty());
+  EXPECT_EQ(border_chairs(measurements(beside_row, false), o).size(), 1u);
+  EXPECT_TRUE(border_chairs(measurements(side_cut, false, "iv_pole"), o).empty());
   SemanticOptions off = o;
   off.association.border_side_cut_poses = false;
   EXPECT_TRUE(border_chairs(seen, off).empty());
