@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -793,14 +794,28 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
 
 std::optional<Eigen::Vector4d> project_box(const ObjectPose& box, const slam::PinholeCamera& camera, const slam::SE3& T_wc) {
   const slam::SE3 T_cw = T_wc.inverse();
-  Eigen::Vector4d b(1e18, 1e18, -1e18, -1e18);
+  constexpr double near = 0.1;  // m in front of the camera
+  std::array<Eigen::Vector3d, 8> corners;
   for (int c = 0; c < 8; ++c) {
     const Eigen::Vector3d corner(c & 1 ? 0.5 : -0.5, c & 2 ? 0.5 : -0.5, c & 4 ? 0.5 : -0.5);
-    const Eigen::Vector3d p = T_cw * (box.pose * corner.cwiseProduct(box.size));
-    if (p.z() < 0.1) return std::nullopt;
+    corners[c] = T_cw * (box.pose * corner.cwiseProduct(box.size));
+  }
+  Eigen::Vector4d b(1e18, 1e18, -1e18, -1e18);
+  const auto add = [&](const Eigen::Vector3d& p) {
     const Eigen::Vector2d uv = camera.project(p);
     b = Eigen::Vector4d(std::min(b(0), uv.x()), std::min(b(1), uv.y()), std::max(b(2), uv.x()), std::max(b(3), uv.y()));
+  };
+  // The part of the box in front of the near plane: its corners there, and where its edges cross it.
+  for (int c = 0; c < 8; ++c) {
+    if (corners[c].z() >= near) add(corners[c]);
+    for (const int bit : {1, 2, 4}) {
+      const int d = c | bit;
+      if (d == c || (corners[c].z() >= near) == (corners[d].z() >= near)) continue;
+      const double t = (near - corners[c].z()) / (corners[d].z() - corners[c].z());
+      add(corners[c] + t * (corners[d] - corners[c]));
+    }
   }
+  if (b(2) < b(0)) return std::nullopt;  // wholly behind it
   b = b.cwiseMax(Eigen::Vector4d::Zero())
           .cwiseMin(Eigen::Vector4d(camera.width - 1, camera.height - 1, camera.width - 1, camera.height - 1));
   if (b(2) <= b(0) || b(3) <= b(1)) return std::nullopt;

@@ -89,8 +89,9 @@ std::vector<std::vector<int>> nearer_overlapping_detections(const cv::Mat& depth
                                                             const MeasurementOptions& options,
                                                             const std::vector<bool>& supports = {});
 
-// The image box of an object's 3-D box seen from camera pose T_wc, clipped to the image; none when a
-// corner lies behind the camera or the box falls outside the image.
+// The image box of an object's 3-D box seen from camera pose T_wc, clipped to the image: of its
+// part in front of the camera (0.1 m on) when the camera stands beside or inside it; none when none
+// of it lies there or it falls outside the image.
 std::optional<Eigen::Vector4d> project_box(const ObjectPose& box, const slam::PinholeCamera& camera, const slam::SE3& T_wc);
 
 // Two detections of one keyframe whose poses stand at one place (horizontal centres closer than

@@ -216,6 +216,29 @@ TEST(Measurement, CoincidentPosesJudgedByTheirProjections) {
   EXPECT_EQ(run(left, on_it, full, corner), std::make_pair(false, false));
 }
 
+// A box the camera stands beside (a bed passed close) projects as its part in front of the camera:
+// the corners there and where its edges cross 0.1 m, clipped to the image.
+TEST(Measurement, ProjectionOfABoxPartlyBehindTheCamera) {
+  const slam::PinholeCamera c = camera();
+  const auto box_at = [](double z) {
+    return ObjectPose{slam::SE3(Eigen::Matrix3d::Identity(), Eigen::Vector3d(1.0, 0.5, z)),
+                      Eigen::Vector3d(0.6, 0.4, 2.0)};
+  };
+  // z from -0.7 to 1.3: its nearest seen corner (x 0.7, y 0.3) at z 1.3, the rest out of the image.
+  const auto b = project_box(box_at(0.3), c, slam::SE3());
+  ASSERT_TRUE(b);
+  EXPECT_NEAR((*b)(0), c.cx + c.fx * 0.7 / 1.3, 1e-9);
+  EXPECT_NEAR((*b)(1), c.cy + c.fy * 0.3 / 1.3, 1e-9);
+  EXPECT_DOUBLE_EQ((*b)(2), c.width - 1);
+  EXPECT_DOUBLE_EQ((*b)(3), c.height - 1);
+  EXPECT_FALSE(project_box(box_at(-2.0), c, slam::SE3()));  // wholly behind the camera
+  // Wholly in front: the corners' box.
+  const auto whole = project_box(box_at(5.0), c, slam::SE3());
+  ASSERT_TRUE(whole);
+  EXPECT_NEAR((*whole)(0), c.cx + c.fx * 0.7 / 6.0, 1e-9);
+  EXPECT_NEAR((*whole)(3), c.cy + c.fy * 0.7 / 4.0, 1e-9);
+}
+
 // An iv pole in the box of the two pole tests below (180 rows: 1.8 m at 5 m with f = 500), seen by
 // an upright camera at the origin.
 std::optional<ObjectPose> measure_pole(const cv::Mat& depth, const SemanticOptions& o) {
