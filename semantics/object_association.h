@@ -5,7 +5,10 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <set>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "semantics/association_model.h"
@@ -63,14 +66,14 @@ int link_through_unplaced_tracks(const std::vector<std::vector<int>>& unplaced,
                                  const std::function<bool(const std::vector<int>&, const std::vector<int>&)>& never_together,
                                  std::vector<int>& dish_of);
 
-// The tracks (as link_through_unplaced_tracks forms them) none of whose measurements any dish
-// holds, after that linking: per track its class and measurement ids (sorted). A thin object seen
-// only where a side border cuts it (a chair in a corner of every view) is such a track
-// (association.border_side_cut_poses).
 // The floor the landmarks of `classes` stand on: the median height of their boxes' bottoms along
 // their up axis; none with fewer than two of them.
 std::optional<double> floor_height(const std::vector<ObjectLandmark>& landmarks, const std::set<std::string>& classes);
 
+// The tracks (as link_through_unplaced_tracks forms them) none of whose measurements any dish
+// holds, after that linking: per track its class and measurement ids (sorted). A thin object seen
+// only where a side border cuts it (a chair in a corner of every view) is such a track
+// (association.border_side_cut_poses).
 std::vector<std::pair<std::string, std::vector<int>>> tracks_without_landmark(
     const std::vector<std::vector<int>>& unplaced, const std::vector<std::string>& unplaced_labels,
     const std::vector<int>& dish_of);
