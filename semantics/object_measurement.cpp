@@ -783,7 +783,7 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
       occluders.push_back({boxes[j], done[j] ? poses[j] : std::nullopt, labels[j] == labels[next],
                            options.box_masked_classes.count(labels[j]) > 0});
     poses[next] = measure_pose_from_depth(depth, camera, T_wc, boxes[next], up, labels[next], options, occluders);
-    if (side_cut_poses && !poses[next])
+    if (side_cut_poses && !poses[next] && nearer[next].empty())
       (*side_cut_poses)[next] =
           measure_thin_side_cut(depth, camera, T_wc, boxes[next], up, labels[next], options, occluders);
     done[next] = true;

@@ -108,8 +108,8 @@ void drop_coincident_poses(std::vector<std::optional<ObjectPose>>& poses, const 
 
 // Assoc. Eq. 1 "Pose" for all detections of one keyframe: front to back, so that each is measured
 // without the pixels of the nearer ones, masked by their measured 3-D boxes when they have one.
-// With `side_cut_poses`, also each unplaced thin class's side-cut box measured as if uncut
-// (measure_thin_side_cut; empty for the others); they mask nothing.
+// With `side_cut_poses`, also each unplaced thin class's side-cut box that no nearer detection
+// overlaps, measured as if uncut (measure_thin_side_cut; empty for the others); they mask nothing.
 std::vector<std::optional<ObjectPose>> measure_keyframe_poses(
     const cv::Mat& depth, const slam::PinholeCamera& camera, const slam::SE3& T_wc,
     const std::vector<Eigen::Vector4d>& boxes, const std::vector<std::string>& labels, const Eigen::Vector3d& up,

@@ -762,6 +762,21 @@ TEST(Measurement, ThinSideCutMeasuredAsIfUncut) {
   // Only thin classes, only side cuts: a cabinet's side cut is completed along its face instead,
   // and an uncut chair has its pose already.
   EXPECT_FALSE(measure_thin_side_cut(v.depth, camera(), v.T_wc, v.box, up, "cabinet", o));
+  // A keyframe's measurement gives it for the box alone, and none when a nearer detection overlaps
+  // the box: what the side cut and the occluder leave of it may be its far part.
+  std::vector<std::optional<ObjectPose>> side_cut;
+  EXPECT_FALSE(measure_keyframe_poses(v.depth, camera(), v.T_wc, {v.box}, {"chair"}, up, o, &side_cut)[0]);
+  ASSERT_EQ(side_cut.size(), 1u);
+  EXPECT_TRUE(side_cut[0]);
+  // Something 1.5 m away covers the chair's box from its middle column to 30 px beyond it.
+  cv::Mat occluded = v.depth.clone();
+  const int x_mid = static_cast<int>(0.5 * (v.box(0) + v.box(2))),
+            y_mid = static_cast<int>(0.5 * (v.box(1) + v.box(3)));
+  const Eigen::Vector4d in_front(x_mid, y_mid, v.box(2) + 30, 479);
+  occluded(cv::Rect(x_mid, y_mid, static_cast<int>(in_front(2)) - x_mid + 1, 480 - y_mid)).setTo(1.5f);
+  measure_keyframe_poses(occluded, camera(), v.T_wc, {v.box, in_front}, {"chair", "cabinet"}, up, o, &side_cut);
+  ASSERT_EQ(side_cut.size(), 2u);
+  EXPECT_FALSE(side_cut[0]);
   const Eigen::Vector3d inside(3.0, 0.3, 0.0);
   const BoxView whole =
       object_on_floor(chair_parts(), inside, 30, eye, std::atan2(eye.z() - 0.45, inside.x()) * 180 / M_PI);
