@@ -351,17 +351,17 @@ std::optional<ObjectPose> measure_pose(const cv::Mat& depth, const slam::Pinhole
   BorderCut cut;
   cut.left = box(0) <= m, cut.top = box(1) <= m;
   cut.right = box(2) >= depth.cols - 1 - m, cut.bottom = box(3) >= depth.rows - 1 - m;
+  const bool thin = options.thin_classes.count(label) > 0;
+  if (thin_side_cut_as_uncut) {
+    if (!thin || cut.left == cut.right) return std::nullopt;
+    cut.left = cut.right = false;
+  }
   // Hidden at the bottom by a nearer detection: completed as a bottom cut is.
   const std::vector<OccluderMask> masks =
       occluder_masks(occluders, o.occluder_inflate, T_wc, o.mask_to_far_end, o.box_mask_to_far_end);
   if (sized && o.occluded_bottom_share <= 1 && bottom_occluded(depth, cam, T_wc, box, masks, o.occluded_bottom_share))
     cut.bottom = true;
   const bool completes = sized && o.complete_depth_with_class_size;
-  const bool thin = options.thin_classes.count(label) > 0;
-  if (thin_side_cut_as_uncut) {
-    if (!thin || cut.left == cut.right) return std::nullopt;
-    cut.left = cut.right = false;
-  }
   const bool side = cut.left || cut.right;
   if ((side && (!completes || !o.complete_side_cuts || thin)) ||
       (cut.left && cut.right) ||

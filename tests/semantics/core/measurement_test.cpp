@@ -700,10 +700,6 @@ TEST(Measurement, AFaceBehindTheBedDoesNotPlaceItsSide) {
   EXPECT_LT(std::abs(p->pose.translation().y() - centre.y()), 0.15);
 }
 
-// A chair (the synthetic one: seat, backrest, four legs) seen 35 degrees off its front shows its
-// seat's front and side edges and its backrest in an L, whose principal axes run 24 degrees off: the
-// front, anchored on the nearest corner, put the centre 0.06 m off. The normals of the backrest and
-// the edges give its axes (0.03 degrees off), and its front and side faces its centre (exact here).
 // A chair's parts as boxes (seat, back, four legs), its front towards +y.
 std::vector<Part> chair_parts() {
   return {{Eigen::Vector3d(0, 0.01, 0.45), Eigen::Vector3d(0.25, 0.24, 0.03)},       // seat
@@ -714,6 +710,10 @@ std::vector<Part> chair_parts() {
           {Eigen::Vector3d(0.225, 0.215, 0.21), Eigen::Vector3d(0.018, 0.018, 0.21)}};
 }
 
+// A chair (the synthetic one: seat, backrest, four legs) seen 35 degrees off its front shows its
+// seat's front and side edges and its backrest in an L, whose principal axes run 24 degrees off: the
+// front, anchored on the nearest corner, put the centre 0.06 m off. The normals of the backrest and
+// the edges give its axes (0.03 degrees off), and its front and side faces its centre (exact here).
 TEST(Measurement, ChairAxesAndCentreFromItsVerticalFaces) {
   SemanticOptions o;
   const std::vector<Part> chair = chair_parts();
