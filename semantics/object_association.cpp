@@ -126,7 +126,8 @@ void drop_border_landmarks_on_others(std::vector<ObjectLandmark>& landmarks, con
 
 void merge_contained_landmarks(std::vector<ObjectLandmark>& landmarks,
                                const std::function<void(ObjectLandmark&)>& place,
-                               const std::function<bool(const ObjectLandmark&, const ObjectLandmark&)>& never_together) {
+                               const std::function<bool(const ObjectLandmark&, const ObjectLandmark&)>& never_together,
+                               const std::function<bool(const ObjectLandmark&, const ObjectLandmark&)>& seen_apart) {
   // Each landmark is tested against the stronger ones that are still kept, with their poses after
   // any merge.
   const std::vector<size_t> order = strongest_first(landmarks);
@@ -140,7 +141,9 @@ void merge_contained_landmarks(std::vector<ObjectLandmark>& landmarks,
       // its footprint (two neighbours of a row, measured close, are seen together).
       if (gone[order[si]] || strong.label != weak.label ||
           !(inside_box(strong.pose, weak.pose.pose.translation()) ||
-            (never_together && inside_box(weak.pose, strong.pose.pose.translation()) && never_together(strong, weak))))
+            (never_together && inside_box(weak.pose, strong.pose.pose.translation()) &&
+             never_together(strong, weak))) ||
+          (seen_apart && seen_apart(strong, weak)))
         continue;
       strong.measurements.insert(strong.measurements.end(), weak.measurements.begin(), weak.measurements.end());
       std::sort(strong.measurements.begin(), strong.measurements.end());
@@ -429,10 +432,14 @@ std::vector<std::pair<int, int>> track_in_group(const std::vector<int>& group_ke
   std::map<std::string, int> classes;
   std::vector<std::pair<int, int>> out;  // (measurement id, track id)
   // Per track: a world point on its last box's centre ray, at the depth of its last measured pose
-  // (the ray's depth is kept when a later box has no pose), and that box's size and depth.
+  // (the ray's depth is kept when a later box has no pose), and that box's size and depth. A track
+  // of side-cut boxes alone is predicted from their latest side-cut pose instead: its 3-D box's
+  // image box, cut by the image as the detections are, or out of view (so a chair leaving the view
+  // at a side border is not left there for the next chair to reach, and one entering grows).
   struct Anchor {
     Eigen::Vector3d p_world;
     double width = 0, height = 0, depth = 0;
+    std::optional<ObjectPose> side_cut;  // the 3-D box of a side-cut box measured as if uncut
   };
   std::map<int, Anchor> anchors;
   const auto known = [&](int kf) { return views && kf >= 0 && kf < static_cast<int>(views->T_wc.size()); };
@@ -445,6 +452,8 @@ std::vector<std::pair<int, int>> track_in_group(const std::vector<int>& group_ke
       predict = [&](const mot::Track& t) -> std::optional<Eigen::Vector4d> {
         const auto a = anchors.find(t.id);
         if (a == anchors.end()) return std::nullopt;
+        if (a->second.side_cut)  // its image box, cut by the image as a detection is
+          if (const auto box = project_box(*a->second.side_cut, views->camera, views->T_wc[kf])) return box;
         const Eigen::Vector3d pc = T_cw * a->second.p_world;
         if (pc.z() < 0.1) return std::nullopt;
         const Eigen::Vector2d c = views->camera.project(pc);
@@ -470,13 +479,17 @@ std::vector<std::pair<int, int>> track_in_group(const std::vector<int>& group_ke
       if (tracks[i] < 0) continue;
       const ObjectMeasurement& m = measurements[dets[i].user_index];
       const auto a = anchors.find(tracks[i]);
+      // A track of side-cut boxes alone follows their latest side-cut pose.
+      const bool side_cut_only = !m.pose && m.side_cut_pose && (a == anchors.end() || a->second.side_cut);
       double depth = 0;
       if (m.pose) depth = (T_cw * m.pose->pose.translation()).z();
+      else if (side_cut_only)
+        depth = (T_cw * m.side_cut_pose->pose.translation()).z();
       else if (a != anchors.end()) depth = (T_cw * a->second.p_world).z();
       if (!(depth > 0.1)) continue;
       const Eigen::Vector2d centre(0.5 * (m.box(0) + m.box(2)), 0.5 * (m.box(1) + m.box(3)));
       anchors[tracks[i]] = Anchor{views->T_wc[kf] * (views->camera.unproject(centre) * depth), m.box(2) - m.box(0),
-                                  m.box(3) - m.box(1), depth};
+                                  m.box(3) - m.box(1), depth, side_cut_only ? m.side_cut_pose : std::nullopt};
     }
   }
   return out;
@@ -717,7 +730,15 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   const auto never_together = [&](const ObjectLandmark& a, const ObjectLandmark& b) {
     return never_measured_together(a.measurements, b.measurements);
   };
-  if (options.association.merge_contained && !hdp_only) merge_contained_landmarks(candidates, place, never_together);
+  const int apart_limit = options.association.merge_contained_apart_keyframes;
+  const auto seen_apart = [&](const ObjectLandmark& a, const ObjectLandmark& b) {
+    return keyframes_detected_apart(keyframe_measurements_of(a.measurements, ms),
+                                    keyframe_measurements_of(b.measurements, ms), apart_limit) >= apart_limit;
+  };
+  if (options.association.merge_contained && !hdp_only)
+    merge_contained_landmarks(
+        candidates, place, never_together,
+        apart_limit > 0 ? std::function<bool(const ObjectLandmark&, const ObjectLandmark&)>(seen_apart) : nullptr);
   if (options.association.drop_inside_other_class && !hdp_only)
     drop_landmarks_inside_other_classes(candidates, options.support_classes);
   // Conflicts are resolved before the projections judge the other keyframes (a landmark placed on
