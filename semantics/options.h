@@ -208,8 +208,8 @@ struct AssociationOptions {
   // where one of them holds a neighbour's boxes, which an MOT swap carries within a group and its
   // overlap; 11 is one more than two overlapping groups span (2M - j = 10). On the synthetic runs
   // (tenth session) the distinct chairs merged had been measured apart in 17-47 keyframes (a few in
-  // 1-8, still merged), the split objects' landmarks in 0-9 (docs/EXPERIMENTS.md, "Merges of two
-  // objects measured apart").
+  // 1-8, still merged), the split objects' landmarks in 0-9 (docs/EXPERIMENTS.md, "Side-cut
+  // tracks in MOT, and merges of two objects measured apart").
   int merge_contained_apart_keyframes = 11;
   // A reported landmark whose position lies inside the 3-D box of a landmark of another class with
   // more measurements (support classes excepted) was measured on that object, and is dropped (our
