@@ -143,29 +143,17 @@ std::vector<std::pair<int, int>> keyframe_measurements_of(const std::vector<int>
   return out;
 }
 
-int keyframes_detected_apart(const std::vector<std::pair<int, int>>& a, const std::vector<std::pair<int, int>>& b,
-                             int stop_at) {
-  // Walk both sorted lists per keyframe; a keyframe counts once, at its first differing pair.
-  int n = 0;
-  auto i = a.begin(), j = b.begin();
-  while (i != a.end() && j != b.end() && (stop_at <= 0 || n < stop_at)) {
-    if (i->first < j->first) ++i;
-    else if (j->first < i->first) ++j;
-    else if (i->second == j->second)
-      ++i, ++j;
-    else {
-      const int kf = i->first;
-      ++n;
-      while (i != a.end() && i->first == kf) ++i;
-      while (j != b.end() && j->first == kf) ++j;
-    }
-  }
-  return n;
-}
-
 bool detected_apart_in_one_keyframe(const std::vector<std::pair<int, int>>& a,
                                     const std::vector<std::pair<int, int>>& b) {
-  return keyframes_detected_apart(a, b, 1) > 0;
+  // Walk both sorted lists per keyframe.
+  auto i = a.begin(), j = b.begin();
+  while (i != a.end() && j != b.end()) {
+    if (i->first < j->first) ++i;
+    else if (j->first < i->first) ++j;
+    else if (i->second != j->second) return true;
+    else ++i, ++j;
+  }
+  return false;
 }
 
 bool AssociationModel::cannot_link(const hdp::ItemRef& a, const hdp::ItemRef& b) const {

@@ -37,10 +37,6 @@ std::vector<std::pair<int, int>> keyframe_measurements_of(const std::vector<int>
 // (a detector gives one box per object and keyframe). Takes sorted (keyframe, id) lists.
 bool detected_apart_in_one_keyframe(const std::vector<std::pair<int, int>>& a,
                                     const std::vector<std::pair<int, int>>& b);
-// In how many keyframes the two were measured as different detections (counting stops at
-// `stop_at` when it is positive).
-int keyframes_detected_apart(const std::vector<std::pair<int, int>>& a, const std::vector<std::pair<int, int>>& b,
-                             int stop_at = 0);
 
 class AssociationModel : public hdp::CrfModel {
  public:

@@ -126,8 +126,7 @@ void drop_border_landmarks_on_others(std::vector<ObjectLandmark>& landmarks, con
 
 void merge_contained_landmarks(std::vector<ObjectLandmark>& landmarks,
                                const std::function<void(ObjectLandmark&)>& place,
-                               const std::function<bool(const ObjectLandmark&, const ObjectLandmark&)>& never_together,
-                               const std::function<bool(const ObjectLandmark&, const ObjectLandmark&)>& seen_apart) {
+                               const std::function<bool(const ObjectLandmark&, const ObjectLandmark&)>& never_together) {
   // Each landmark is tested against the stronger ones that are still kept, with their poses after
   // any merge.
   const std::vector<size_t> order = strongest_first(landmarks);
@@ -141,9 +140,7 @@ void merge_contained_landmarks(std::vector<ObjectLandmark>& landmarks,
       // its footprint (two neighbours of a row, measured close, are seen together).
       if (gone[order[si]] || strong.label != weak.label ||
           !(inside_box(strong.pose, weak.pose.pose.translation()) ||
-            (never_together && inside_box(weak.pose, strong.pose.pose.translation()) &&
-             never_together(strong, weak))) ||
-          (seen_apart && seen_apart(strong, weak)))
+            (never_together && inside_box(weak.pose, strong.pose.pose.translation()) && never_together(strong, weak))))
         continue;
       strong.measurements.insert(strong.measurements.end(), weak.measurements.begin(), weak.measurements.end());
       std::sort(strong.measurements.begin(), strong.measurements.end());
@@ -730,15 +727,7 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   const auto never_together = [&](const ObjectLandmark& a, const ObjectLandmark& b) {
     return never_measured_together(a.measurements, b.measurements);
   };
-  const int apart_limit = options.association.merge_contained_apart_keyframes;
-  const auto seen_apart = [&](const ObjectLandmark& a, const ObjectLandmark& b) {
-    return keyframes_detected_apart(keyframe_measurements_of(a.measurements, ms),
-                                    keyframe_measurements_of(b.measurements, ms), apart_limit) >= apart_limit;
-  };
-  if (options.association.merge_contained && !hdp_only)
-    merge_contained_landmarks(
-        candidates, place, never_together,
-        apart_limit > 0 ? std::function<bool(const ObjectLandmark&, const ObjectLandmark&)>(seen_apart) : nullptr);
+  if (options.association.merge_contained && !hdp_only) merge_contained_landmarks(candidates, place, never_together);
   if (options.association.drop_inside_other_class && !hdp_only)
     drop_landmarks_inside_other_classes(candidates, options.support_classes);
   // Conflicts are resolved before the projections judge the other keyframes (a landmark placed on

@@ -44,12 +44,9 @@ struct AssociationResult {
 // `never_together` says the two were never measured in one keyframe, is merged into it, and `place`
 // chooses the merged landmark's pose again. Landmarks keep their order; ids are left to the caller.
 // Hierarchical mode only.
-// `seen_apart`, when given, names pairs measured as two detections in so many keyframes that they
-// are two objects: never merged.
 void merge_contained_landmarks(
     std::vector<ObjectLandmark>& landmarks, const std::function<void(ObjectLandmark&)>& place,
-    const std::function<bool(const ObjectLandmark&, const ObjectLandmark&)>& never_together = nullptr,
-    const std::function<bool(const ObjectLandmark&, const ObjectLandmark&)>& seen_apart = nullptr);
+    const std::function<bool(const ObjectLandmark&, const ObjectLandmark&)>& never_together = nullptr);
 
 // Group objects none of whose measurements could be placed never reach the sampler, so a track
 // that runs through keyframes without poses (a bed seen from above, cut by the bottom border)

@@ -202,15 +202,6 @@ struct AssociationOptions {
   // neighbours inside each other: merging there lowered its accuracy on 15 of its 72 synthetic runs,
   // by 0.25-5.0 points).
   bool merge_contained = true;
-  // ... unless the two were measured as two detections in at least this many keyframes (0: no
-  // limit): then they are two objects, one placed inside the other's footprint (a neighbour of a
-  // row measured on the chair behind it). A split object's two landmarks are measured apart only
-  // where one of them holds a neighbour's boxes, which an MOT swap carries within a group and its
-  // overlap; 11 is one more than two overlapping groups span (2M - j = 10). On the synthetic runs
-  // (tenth session) the distinct chairs merged had been measured apart in 17-47 keyframes (a few in
-  // 1-8, still merged), the split objects' landmarks in 0-9 (docs/EXPERIMENTS.md, "Side-cut
-  // tracks in MOT, and merges of two objects measured apart").
-  int merge_contained_apart_keyframes = 11;
   // A reported landmark whose position lies inside the 3-D box of a landmark of another class with
   // more measurements (support classes excepted) was measured on that object, and is dropped (our
   // addition; drop_landmarks_inside_other_classes). Hierarchical mode only. On the 72 synthetic

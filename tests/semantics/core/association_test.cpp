@@ -395,34 +395,6 @@ TEST(Association, LandmarkInsideAStrongerOneOfItsClassJoinsIt) {
                                      landmark_at("chair", 0.56, 0.0, 100, 12, 0.0)};
   merge_contained_landmarks(row, [](ObjectLandmark&) {}, trusted);
   EXPECT_EQ(row.size(), 2u);
-  // Two landmarks measured as two detections in many keyframes are two objects, however close their
-  // poses (aisle_straight_quick_5, seed 2: chair 12's landmark placed inside chair 11's footprint,
-  // the two detected apart in 40 keyframes): those seen_apart names stay.
-  const auto seen_apart = [](const ObjectLandmark& a, const ObjectLandmark& b) {
-    return a.measurements.front() == 0 && b.measurements.front() == 10;
-  };
-  std::vector<ObjectLandmark> apart = {landmark_at("chair", 0.0, 0.0, 0, 3), landmark_at("chair", 0.1, 0.0, 10, 3)};
-  merge_contained_landmarks(
-      apart, [](ObjectLandmark&) {}, nullptr, seen_apart);
-  EXPECT_EQ(apart.size(), 2u);
-}
-
-TEST(Association, KeyframesDetectedApartCountsEachKeyframeOnce) {
-  // (keyframe, measurement id) lists: keyframe 1 holds one detection of both, 2 and 4 two different
-  // ones (4 twice over), 3 only one of them.
-  const std::vector<std::pair<int, int>> a = {{1, 10}, {2, 20}, {3, 30}, {4, 40}, {4, 41}};
-  const std::vector<std::pair<int, int>> b = {{1, 10}, {2, 21}, {4, 42}, {4, 43}, {5, 50}};
-  EXPECT_EQ(keyframes_detected_apart(a, b), 2);
-  EXPECT_EQ(keyframes_detected_apart(b, a), 2);
-  EXPECT_EQ(keyframes_detected_apart(a, b, 1), 1);  // stops counting at 1
-  EXPECT_TRUE(detected_apart_in_one_keyframe(a, b));
-  EXPECT_EQ(keyframes_detected_apart(a, a), 0);
-  EXPECT_FALSE(detected_apart_in_one_keyframe({{1, 10}, {3, 30}}, {{2, 20}}));
-  EXPECT_EQ(load_semantic_options(YAML::Load("association: {merge_contained_apart_keyframes: 2}"), "s.yaml")
-                .association.merge_contained_apart_keyframes,
-            2);
-  test::expect_load_error_names("association: {merge_contained_apart_keyframes: -1}",
-                                "association.merge_contained_apart_keyframes");
 }
 
 // A landmark inside the 3-D box of a landmark of another class with more measurements is dropped;
