@@ -158,8 +158,8 @@ TEST(Association, TinyBoxesAreTrackedWithoutTheirEmbedding) {
 // continues. The side-cut pose anchors the first chair's track, so the keyframe poses carry its
 // predicted box out of the view, and the last box stays with the chair it belongs to.
 TEST(Association, MotCarriesASideCutChairOutOfViewWithTheKeyframePoses) {
-  slam::PinholeCamera cam;
-  cam.fx = cam.fy = 525, cam.cx = 319.5, cam.cy = 239.5, cam.width = 640, cam.height = 480;
+  const slam::PinholeCamera cam = test::vga_camera(525);
+  const double right = cam.width - 1;  // a box reaching past it is cut there
   KeyframeViews views{cam, {}};
   const std::vector<Eigen::Vector3d> chairs = {{1.2, 0.3, 2.2}, {0.3, 0.3, 3.0}};
   std::vector<ObjectMeasurement> ms;
@@ -170,17 +170,17 @@ TEST(Association, MotCarriesASideCutChairOutOfViewWithTheKeyframePoses) {
       if (c == 0 && kf > 0) continue;  // out of view
       const Eigen::Vector3d p_c = views.T_wc[kf].inverse() * chairs[c];
       const Eigen::Vector2d uv = cam.project(p_c);
-      const double hw = 0.5 * 525 * 0.45 / p_c.z(), hh = 0.5 * 525 * 0.85 / p_c.z();
+      const double hw = 0.5 * cam.fx * 0.45 / p_c.z(), hh = 0.5 * cam.fy * 0.85 / p_c.z();
       ObjectMeasurement m;
       m.id = static_cast<int>(ms.size());
       m.keyframe = kf;
-      m.box = Eigen::Vector4d(uv.x() - hw, uv.y() - hh, std::min(uv.x() + hw, 639.0), uv.y() + hh);
+      m.box = Eigen::Vector4d(uv.x() - hw, uv.y() - hh, std::min(uv.x() + hw, right), uv.y() + hh);
       m.label = "chair";
       m.score = 0.9f;
       m.embedding = Eigen::VectorXf::Ones(8).normalized();
       m.gt_instance = c;
       const ObjectPose pose{slam::SE3(Eigen::Quaterniond::Identity(), chairs[c]), Eigen::Vector3d(0.45, 0.45, 0.85)};
-      if (uv.x() + hw > 639.0)
+      if (uv.x() + hw > right)
         m.side_cut_pose = pose;  // cut: measured as if uncut only
       else
         m.pose = pose;
