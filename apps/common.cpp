@@ -2,19 +2,29 @@
 
 namespace wardmap::apps {
 
-void add_reader_options(CLI::App* cmd, std::string& format, double& rate, std::string& kitti_camera) {
-  cmd->add_option("--format", format, "Dataset kind instead of detecting it from the layout")
+void add_reader_options(CLI::App* cmd, ReaderArgs& args, bool range) {
+  cmd->add_option("--format", args.format, "Dataset kind instead of detecting it from the layout")
       ->check(CLI::IsMember({"tum", "kitti", "euroc", "7scenes", "folder", "video"}));
-  cmd->add_option("--rate", rate, "Frame rate of an image folder (Hz)")->capture_default_str()->check(CLI::PositiveNumber);
-  cmd->add_option("--kitti-camera", kitti_camera, "KITTI camera folder: image_0 (default) or image_2")
+  cmd->add_option("--rate", args.rate, "Frame rate of an image folder (Hz)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--kitti-camera", args.kitti_camera, "KITTI camera folder: image_0 (default) or image_2")
       ->check(CLI::IsMember({"image_0", "image_2"}));
+  if (!range) return;
+  cmd->add_option("--first-frame", args.first_frame,
+                  "Start at this frame (0-based, in the dataset's order); the frames keep their timestamps, and the "
+                  "ground truth is cut to the stretch");
+  cmd->add_option("--frames", args.frames, "Use at most this many frames (from --first-frame; default: to the end)")
+      ->check(CLI::PositiveNumber);
 }
 
-slam::io::ReaderOptions reader_options(const std::string& format, double rate, const std::string& kitti_camera) {
+slam::io::ReaderOptions reader_options(const ReaderArgs& args) {
   slam::io::ReaderOptions o;
-  if (!format.empty()) o.kind = slam::io::parse_dataset_kind(format);
-  o.rate = rate;
-  o.kitti_camera = kitti_camera;
+  if (!args.format.empty()) o.kind = slam::io::parse_dataset_kind(args.format);
+  o.rate = args.rate;
+  o.kitti_camera = args.kitti_camera;
+  o.first_frame = args.first_frame;
+  o.frame_count = args.frames;
   return o;
 }
 

@@ -8,8 +8,16 @@
 
 namespace wardmap::apps {
 
-// --format, --rate, --kitti-camera on a command.
-void add_reader_options(CLI::App* cmd, std::string& format, double& rate, std::string& kitti_camera);
-slam::io::ReaderOptions reader_options(const std::string& format, double rate, const std::string& kitti_camera);
+// How a command opens its sequences: --format, --rate, --kitti-camera, --first-frame, --frames.
+struct ReaderArgs {
+  std::string format;        // empty: detected from the layout
+  double rate = 30.0;        // image folder, Hz
+  std::string kitti_camera;  // empty: image_0 when present
+  size_t first_frame = 0;    // 0-based, in the dataset's order
+  size_t frames = 0;         // 0: to the end
+};
+// Adds those options to a command; with `range` false, only the first three.
+void add_reader_options(CLI::App* cmd, ReaderArgs& args, bool range = true);
+slam::io::ReaderOptions reader_options(const ReaderArgs& args);
 
 }  // namespace wardmap::apps

@@ -99,7 +99,7 @@ std::string format_baseline_comparison(const SemanticRun& r) {
 SemanticSetup::~SemanticSetup() = default;  // DetectionCache is complete here
 
 std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
-  auto reader = slam::io::open_sequence(job.sequence);
+  auto reader = slam::io::open_sequence(job.sequence, job.reader);
   const auto& info = reader->info();
   auto setup = std::make_unique<SemanticSetup>();
   std::optional<slam::io::Settings> settings;
@@ -143,7 +143,7 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
 }
 
 SemanticRun run_semantic_job(const SemanticJob& job) {
-  auto reader = slam::io::open_sequence(job.sequence);
+  auto reader = slam::io::open_sequence(job.sequence, job.reader);
   const auto& info = reader->info();
   if (!job.keyframes && !info.has_ground_truth)
     throw InputError(job.sequence.string(), "--poses gt needs ground-truth poses, and this sequence has none");
@@ -259,7 +259,8 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
       if (pairs.size() >= 3 && job.keyframe_points && run.metric_scale) run.alignment_scale = align.scale();
     }
     const auto truth = semantics::read_objects_json(truth_file);
-    const auto annotations = semantics::load_annotations(ann_file);
+    auto annotations = semantics::load_annotations(ann_file);
+    semantics::keep_annotations_between(annotations, reader->timestamp(0), reader->timestamp(reader->size() - 1));
     const auto evaluate = [&](const semantics::AssociationResult& result) {
       std::vector<semantics::MeasurementRecord> records;
       for (const auto& m : run.measurements) {
@@ -312,6 +313,7 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
                                        {"embedding_median_per_keyframe", median(T.embedding)},
                                        {"measurement_median_per_keyframe", median(T.measurement)},
                                        {"mot_total", T.mot}, {"hdp_total", T.hdp}, {"pose_selection_total", T.pose_selection}}}};
+    report["first_frame"] = reader->first_frame();  // of the stretch run (--first-frame)
     std::string md = "# wardmap run\n\n- sequence: `" + job.sequence.string() + "`\n- poses: " + (own_run ? "ground truth" : "SLAM keyframes") + "\n- detector: " +
                      job.detector + "\n- association: " + job.association + "\n- keyframes: " +
                      std::to_string(run.keyframes.size()) + ", groups: " + std::to_string(run.result.num_groups) +

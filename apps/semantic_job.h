@@ -17,6 +17,7 @@
 #include "semantics/options.h"
 #include "semantics/semantic_mapper.h"
 #include "slam/core/trajectory.h"
+#include "slam/io/sequence.h"
 
 namespace wardmap::apps {
 
@@ -25,6 +26,7 @@ struct SemanticSetup;
 
 struct SemanticJob {
   std::filesystem::path sequence;
+  slam::io::ReaderOptions reader;     // --format, --first-frame, --frames, ...
   std::filesystem::path settings;     // optional: camera + `semantics` / `detection` sections
   std::filesystem::path out;          // run folder; empty: write nothing
   std::string detector = "annotations";

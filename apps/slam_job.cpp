@@ -76,7 +76,7 @@ double run_slam_job(const SlamJob& job) {
   std::optional<InterruptScope> interrupt_scope(std::in_place);
   // Before looking for its calibration: a mistyped path should be reported as such.
   if (!fs::exists(job.sequence)) throw InputError(job.sequence.string(), "sequence not found (no such file or folder)");
-  auto reader = slam::io::open_sequence(job.sequence);
+  auto reader = slam::io::open_sequence(job.sequence, job.reader);
   const auto& info = reader->info();
   fs::path settings_file = job.settings;
   if (settings_file.empty()) {
@@ -191,6 +191,7 @@ double run_slam_job(const SlamJob& job) {
                  // the tracker waiting for a threaded mapper still busy (the sequence time since the last
                  // keyframe, or mapping.max_lag_frames after it)
                  {"mapper_wait_seconds", wait_seconds}};
+  report["first_frame"] = reader->first_frame();  // of the stretch run (--first-frame)
   if (interrupted) report["interrupted"] = signal_name(interrupted);
   {
     // What local mapping did, over the run (all submaps).

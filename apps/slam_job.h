@@ -12,6 +12,7 @@ namespace wardmap::apps {
 
 struct SlamJob {
   std::filesystem::path sequence;
+  slam::io::ReaderOptions reader;  // --format, --first-frame, --frames, ...
   std::filesystem::path settings;  // empty: default_settings(the sequence's info)
   std::filesystem::path out;
   std::string mode;  // "rgbd", "mono", or empty: rgbd when the sequence has depth, else mono

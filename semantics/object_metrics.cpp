@@ -23,6 +23,11 @@ const std::vector<AnnotatedObject>* annotations_at(const Annotations& a, double 
   return &it->second;
 }
 
+void keep_annotations_between(Annotations& a, double first, double last) {
+  a.erase(a.begin(), a.lower_bound(first - 1e-4));
+  a.erase(a.upper_bound(last + 1e-4), a.end());
+}
+
 double box_intersection(const Eigen::Vector4d& a, const Eigen::Vector4d& b) {
   const double w = std::min(a(2), b(2)) - std::max(a(0), b(0)), h = std::min(a(3), b(3)) - std::max(a(1), b(1));
   return w > 0 && h > 0 ? w * h : 0.0;

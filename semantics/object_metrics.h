@@ -17,6 +17,9 @@ using Annotations = std::map<double, std::vector<AnnotatedObject>>;
 Annotations load_annotations(const std::filesystem::path& file);
 // The annotations of the frame at time t (within 1e-4 s); null when none.
 const std::vector<AnnotatedObject>* annotations_at(const Annotations& a, double t);
+// Leaves out the frames outside [first, last] (within 1e-4 s): a run on a stretch of the sequence
+// (--first-frame, --frames) is scored on the objects seen in that stretch.
+void keep_annotations_between(Annotations& a, double first, double last);
 
 struct ObjectEvalOptions {
   double iou_threshold = 0.5;      // box match when measurements carry no true identity

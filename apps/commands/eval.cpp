@@ -23,11 +23,10 @@ using slam::Trajectory;
 namespace {
 
 struct EvalArgs {
-  std::string gt, est, align = "sim3", json, plot, est_format = "auto", format;
+  std::string gt, est, align = "sim3", json, plot, est_format = "auto";
   double max_dt = 0.02;
   int rpe_delta = 1;
-  double rate = 30.0;
-  std::string kitti_camera;
+  ReaderArgs reader;
 };
 
 nlohmann::json stats_json(const slam::eval::ErrorStats& s) {
@@ -40,7 +39,7 @@ void run_eval(const EvalArgs& a) {
   Trajectory gt;
   std::unique_ptr<slam::io::SequenceReader> sequence;
   if (fs::is_directory(a.gt)) {
-    sequence = slam::io::open_sequence(a.gt, reader_options(a.format, a.rate, a.kitti_camera));
+    sequence = slam::io::open_sequence(a.gt, reader_options(a.reader));
     gt = sequence->ground_truth();
     if (gt.empty()) throw InputError(a.gt, "the sequence has no ground truth");
   } else {
@@ -123,7 +122,7 @@ void add_eval_command(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "tum", "kitti"}));
   cmd->add_option("--json", args->json, "Write the figures as JSON to this file");
   cmd->add_option("--plot", args->plot, "Draw the aligned estimate over the ground truth (top view) to this PNG");
-  add_reader_options(cmd, args->format, args->rate, args->kitti_camera);
+  add_reader_options(cmd, args->reader);
   cmd->callback([args] { run_eval(*args); });
 }
 

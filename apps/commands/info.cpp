@@ -20,13 +20,12 @@ namespace fs = std::filesystem;
 namespace {
 
 struct InfoArgs {
-  std::string path, format, settings, json;
-  double rate = 30.0;
-  std::string kitti_camera;
+  std::string path, settings, json;
+  ReaderArgs reader;
 };
 
 void run_info(const InfoArgs& a) {
-  const auto reader = slam::io::open_sequence(a.path, reader_options(a.format, a.rate, a.kitti_camera));
+  const auto reader = slam::io::open_sequence(a.path, reader_options(a.reader));
   const auto& in = reader->info();
   const std::string suggestion = slam::io::suggest_settings_name(slam::io::to_string(in.kind), in.root, in.width);
 
@@ -86,7 +85,7 @@ void add_info_command(CLI::App& app) {
   auto args = std::make_shared<InfoArgs>();
   auto* cmd = app.add_subcommand("info", "Describe a sequence: kind, frames, duration, resolution, calibration, depth, ground truth");
   cmd->add_option("dataset", args->path, "Sequence folder (TUM RGB-D, KITTI, EuRoC, 7-Scenes, images) or video file")->required();
-  add_reader_options(cmd, args->format, args->rate, args->kitti_camera);
+  add_reader_options(cmd, args->reader);
   cmd->add_option("--settings", args->settings, "Also load and validate this settings YAML against the sequence");
   cmd->add_option("--json", args->json, "Also write the description as JSON to this file");
   cmd->callback([args] { run_info(*args); });

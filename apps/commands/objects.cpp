@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "apps/commands/commands.h"
+#include "apps/common.h"
 #include "apps/semantic_job.h"
 #include "slam/core/errors.h"
 #include "slam/eval/trajectory_eval.h"
@@ -77,18 +78,28 @@ void eval_objects(const EvalObjectsArgs& a) {
   // The run's world onto the ground truth's, by the trajectory alignment of EVALUATION.md (auto:
   // Sim(3) for a monocular run, SE(3) otherwise, as `wardmap run` scores its own).
   const std::string alignment = a.align != "auto" ? a.align : monocular ? "sim3" : "se3";
+  // A run on a stretch of the sequence (--first-frame, --frames) is scored on that stretch.
+  slam::io::ReaderOptions stretch;
+  if (report.is_object()) {
+    const json first = report.value("first_frame", json(0)), frames = report.value("frames", json(0));
+    if (!first.is_number_unsigned() || !frames.is_number_unsigned())
+      throw InputError((run / "report.json").string(), "first_frame and frames must be frame counts");
+    stretch.first_frame = first.get<size_t>();
+    stretch.frame_count = frames.get<size_t>();
+  }
+  auto reader = slam::io::open_sequence(seq, stretch);
   slam::Sim3 align;
   if (alignment != "none") {
-    auto reader = slam::io::open_sequence(seq);
     auto est = slam::io::read_trajectory(run / "trajectory.txt");
     for (auto& T : est.poses) T = slam::SE3(T.rotation(), T.translation() * metres_per_map_unit);
     const auto pairs = slam::eval::associate(reader->ground_truth(), est, {});
     align = slam::eval::compute_ate(reader->ground_truth(), est, pairs, slam::eval::parse_alignment(alignment)).transform;
   }
   std::vector<semantics::TrueObject> landmarks = semantics::read_objects_json(run / "objects.json");
+  auto annotations = semantics::load_annotations(seq / "annotations.jsonl");
+  semantics::keep_annotations_between(annotations, reader->timestamp(0), reader->timestamp(reader->size() - 1));
   const auto e = semantics::evaluate_objects(semantics::read_measurements_jsonl(run / "measurements.jsonl"), landmarks,
-                                             semantics::read_objects_json(seq / "objects.json"),
-                                             semantics::load_annotations(seq / "annotations.jsonl"), align);
+                                             semantics::read_objects_json(seq / "objects.json"), annotations, align);
   std::printf("%s", format_object_evaluation(e).c_str());
   if (!a.json.empty()) {
     json j = {{"run", a.run}, {"sequence", a.sequence}, {"association_accuracy", e.association_accuracy},
@@ -103,10 +114,12 @@ void eval_objects(const EvalObjectsArgs& a) {
 struct CompareArgs {
   std::vector<std::string> sequences;
   SemanticJob job;
+  ReaderArgs reader;
   std::string json;
 };
 
 void compare(CompareArgs& a) {
+  a.job.reader = reader_options(a.reader);
   for (const auto& s : a.sequences) require_object_ground_truth(s);  // before the table starts
   json rows = json::array();
   std::printf("%-28s | %-12s | %9s | %7s | %9s | %8s | %8s | %7s\n", "sequence", "association", "accuracy", "objects",
@@ -165,6 +178,7 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("sequences", a->sequences, "Synthetic sequences (wardmap synth outputs)")->required();
   cmd->add_option("--json", a->json, "Also write the table as JSON");
   add_semantic_options(cmd, a->job);
+  add_reader_options(cmd, a->reader);
   cmd->callback([a] { compare(*a); });
 }
 

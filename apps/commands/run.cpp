@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "apps/commands/commands.h"
+#include "apps/common.h"
 #include "apps/semantic_job.h"
 #include "apps/slam_job.h"
 #include "slam/core/errors.h"
@@ -16,6 +17,7 @@ namespace {
 
 struct RunArgs {
   SemanticJob job;
+  ReaderArgs reader;
   std::string poses = "slam";
   std::string mode;  // empty: rgbd when the sequence has depth, else mono
   bool deterministic = false;
@@ -25,13 +27,22 @@ struct RunArgs {
 };
 
 void run(RunArgs& a) {
+  a.job.reader = reader_options(a.reader);
   // Checked before the run, not when its outputs are written at the end.
   if (!a.job.out.empty() && std::filesystem::exists(a.job.out) && !std::filesystem::is_directory(a.job.out))
     throw InputError(a.job.out.string(), "--out names a file; it must be a folder (new or existing)");
   if (a.poses == "slam") {
     spdlog::info("run: {} (SLAM front-process{})", a.job.sequence.string(), a.mode.empty() ? "" : ", " + a.mode);
-    SlamJob s{a.job.sequence, a.job.settings, a.job.out, a.mode, a.job.progress, a.deterministic, a.vocabulary,
-              a.objects ? &a.job : nullptr};
+    SlamJob s;
+    s.sequence = a.job.sequence;
+    s.reader = a.job.reader;
+    s.settings = a.job.settings;
+    s.out = a.job.out;
+    s.mode = a.mode;
+    s.progress = a.job.progress;
+    s.deterministic = a.deterministic;
+    s.vocabulary = a.vocabulary;
+    s.objects = a.objects ? &a.job : nullptr;
     s.realtime = a.realtime;
     run_slam_job(s);
     return;
@@ -100,6 +111,7 @@ void add_run_command(CLI::App& app) {
       ->excludes("--deterministic");
   add_semantic_options(cmd, a->job);
   add_baseline_option(cmd, a->job);
+  add_reader_options(cmd, a->reader);
   cmd->get_option("--settings")
       ->description("Settings YAML: camera (ORB-SLAM3 keys) and the tracking/mapping/semantics/detection sections.\n"
                     "A SLAM run (--poses slam) without it reads the sequence's settings.yaml, else the shipped\n"

@@ -29,8 +29,7 @@ struct TrainArgs {
   slam::place::PlaceOptions options;
   int every = 5;
   std::uint32_t seed = 1;
-  std::string format, kitti_camera;
-  double rate = 30.0;
+  ReaderArgs reader;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
@@ -45,7 +44,7 @@ void run_train(const TrainArgs& a) {
   }
   const auto start = std::chrono::steady_clock::now();
   const slam::OrbExtractor extractor(slam::OrbOptions{});  // the front-process's default ORB settings
-  const auto ro = reader_options(a.format, a.rate, a.kitti_camera);
+  const auto ro = reader_options(a.reader);
   std::vector<cv::Mat> per_image;
   std::size_t descriptors = 0;
   for (const auto& path : a.sequences) {
@@ -102,7 +101,7 @@ void add_vocabulary_command(CLI::App& app) {
   cmd->add_option("--every", a->every, "Use every N-th frame")->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--seed", a->seed, "Seed of the k-means++ seeding; the same inputs and seed give the same file")
       ->capture_default_str();
-  add_reader_options(cmd, a->format, a->rate, a->kitti_camera);
+  add_reader_options(cmd, a->reader);
   cmd->callback([a]() { run_train(*a); });
 }
 

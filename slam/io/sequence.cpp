@@ -94,6 +94,11 @@ void SequenceReader::finish_opening() {
   const cv::Mat first = load_image(entries_.front().image);
   info_.width = first.cols;
   info_.height = first.rows;
+  info_.has_depth = !entries_.front().depth.empty();
+  update_counts();
+}
+
+void SequenceReader::update_counts() {
   info_.frame_count = entries_.size();
   const double span = entries_.back().timestamp - entries_.front().timestamp;
   if (entries_.size() > 1 && span > 0) info_.measured_fps = (entries_.size() - 1) / span;
@@ -102,7 +107,31 @@ void SequenceReader::finish_opening() {
   info_.frames_with_ground_truth =
       std::count_if(entries_.begin(), entries_.end(), [](const Entry& e) { return e.gt_pose.has_value(); });
   info_.has_ground_truth = info_.frames_with_ground_truth > 0;
-  info_.has_depth = !entries_.front().depth.empty();
+}
+
+void SequenceReader::keep_frames(size_t first, size_t count) {
+  const size_t total = entries_.size();
+  if (first >= total)
+    throw InputError(info_.root.string(), "first frame " + std::to_string(first) +
+                                              " is past the end: the sequence has " + std::to_string(total) +
+                                              " frames (0-" + std::to_string(total - 1) + ")");
+  const size_t last = count == 0 ? total : std::min(total, first + count);  // one past the last kept
+  const double half_period = info_.fps > 0 ? 0.5 / info_.fps : 0.0;
+  const double t0 = entries_[first].timestamp - half_period, t1 = entries_[last - 1].timestamp + half_period;
+  entries_.erase(entries_.begin() + static_cast<std::ptrdiff_t>(last), entries_.end());
+  entries_.erase(entries_.begin(), entries_.begin() + static_cast<std::ptrdiff_t>(first));
+  Trajectory gt;
+  gt.indexed = ground_truth_.indexed;
+  for (size_t k = 0; k < ground_truth_.size(); ++k)
+    if (ground_truth_.timestamps[k] >= t0 && ground_truth_.timestamps[k] <= t1)
+      gt.push_back(ground_truth_.timestamps[k], ground_truth_.poses[k]);
+  ground_truth_ = std::move(gt);
+  first_frame_ += first;
+  update_counts();  // the nominal rate (info_.fps) stays
+  const std::string note = "frames " + std::to_string(first_frame_) + "-" +
+                           std::to_string(first_frame_ + entries_.size() - 1) + " of " +
+                           std::to_string(first_frame_ - first + total);
+  info_.notes = info_.notes.empty() ? note : info_.notes + "; " + note;
 }
 
 std::optional<size_t> nearest_within(const std::vector<double>& ts, double t, double max_dt) {
@@ -165,6 +194,7 @@ std::unique_ptr<SequenceReader> open_sequence(const fs::path& path, const Reader
     const Settings s = load_settings(settings);
     reader->set_calibration(s.camera.camera, settings.string());
   }
+  if (options.first_frame > 0 || options.frame_count > 0) reader->keep_frames(options.first_frame, options.frame_count);
   return reader;
 }
 

@@ -54,6 +54,10 @@ struct ReaderOptions {
   double rate = 30.0;                // image folder: frames per second
   std::string kitti_camera;          // "image_0" | "image_2"; empty: image_0 if present
   std::optional<double> depth_factor;  // overrides the dataset's default
+  // A stretch of the sequence: frames from first_frame (0-based, in the dataset's order), at most
+  // frame_count of them (0: to the end). See SequenceReader::keep_frames.
+  size_t first_frame = 0;
+  size_t frame_count = 0;
 };
 
 class SequenceReader {
@@ -78,6 +82,13 @@ class SequenceReader {
   const Trajectory& ground_truth() const { return ground_truth_; }
   // Calibration found beside the dataset (a settings.yaml in its folder); the image size must match.
   void set_calibration(const PinholeCamera& camera, const std::string& source);
+  // Keeps `count` frames from frame `first` (0: to the end), renumbered from 0 with their own
+  // timestamps, and the ground truth within their time span (half a frame period either side), so
+  // that a run and its evaluation see the stretch alone. Throws InputError naming the sequence when
+  // `first` is past its last frame.
+  void keep_frames(size_t first, size_t count);
+  // The dataset's index of frame 0 (non-zero after keep_frames).
+  size_t first_frame() const { return first_frame_; }
 
  protected:
   struct Entry {
@@ -90,6 +101,8 @@ class SequenceReader {
   // Checks that every listed image and depth file exists (naming the index file and line when one
   // lists it), fills info_.width/height from the first image, duration, counts. Call last.
   void finish_opening();
+  // frame_count, fps, duration and the ground-truth counts of info_ from entries_.
+  void update_counts();
   // Attaches to each entry the ground-truth pose closest in time within max_dt.
   void attach_ground_truth_by_time(double max_dt);
 
@@ -97,6 +110,7 @@ class SequenceReader {
   std::vector<Entry> entries_;
   bool decode_depth_ = true;
   Trajectory ground_truth_;
+  size_t first_frame_ = 0;
 };
 
 // Opens a sequence, detecting its kind from the folder layout unless options.kind is set.

@@ -83,16 +83,17 @@ class VideoReader : public SequenceReader {
 
   Frame read(size_t i) override {
     if (i >= entries_.size()) throw InputError(file_.string(), "frame " + std::to_string(i) + " is past the end");
-    if (i != next_) {
-      cap_.set(cv::CAP_PROP_POS_FRAMES, static_cast<double>(i));
-      next_ = i;
+    const size_t pos = first_frame_ + i;  // in the video (keep_frames)
+    if (pos != next_) {
+      cap_.set(cv::CAP_PROP_POS_FRAMES, static_cast<double>(pos));
+      next_ = pos;
     }
     Frame f;
     f.index = i;
     f.timestamp = entries_[i].timestamp;
     f.image_path = file_;
     if (!cap_.read(f.image) || f.image.empty())
-      throw InputError(file_.string(), "cannot decode frame " + std::to_string(i));
+      throw InputError(file_.string(), "cannot decode frame " + std::to_string(pos));
     ++next_;
     return f;
   }

@@ -379,6 +379,64 @@ TEST(CliPipeline, InterruptedRunWritesTheFramesSoFar) {
 
 // eval-objects scores a run folder as the run itself did, refuses a run of another sequence, and
 // compare checks every sequence for object ground truth before its table starts.
+// A stretch of a sequence (--first-frame, --frames): its frames keep their timestamps, and the run,
+// eval-objects and compare all score it on the objects seen in that stretch alone.
+TEST(CliObjects, AStretchIsScoredOnItsOwnFrames) {
+  const fs::path dir = scratch_dir();
+  ASSERT_EQ(wardmap_cli("-q synth --scenario ward --variant slow --frames 60 --out " + shq(dir / "ward")).code, 0);
+  const auto json_of = [](const fs::path& p) {
+    std::ifstream in(p);
+    return nlohmann::json::parse(in);
+  };
+  ASSERT_EQ(wardmap_cli("-q run " + shq(dir / "ward") + " --poses gt --no-embedding --no-baseline --out " +
+                        shq(dir / "whole"))
+                .code,
+            0);
+  const CliResult run =
+      wardmap_cli("-q run " + shq(dir / "ward") +
+                  " --poses gt --no-embedding --no-baseline --first-frame 40 --frames 20 --out " + shq(dir / "run"));
+  ASSERT_EQ(run.code, 0) << run.output;
+  const nlohmann::json whole = json_of(dir / "whole" / "report.json"), report = json_of(dir / "run" / "report.json");
+  EXPECT_EQ(report.at("frames"), 20);
+  EXPECT_EQ(report.at("first_frame"), 40);
+  EXPECT_EQ(whole.at("first_frame"), 0);
+  // Its first pose is the whole run's 41st line, timestamp included.
+  std::ifstream whole_in(dir / "whole" / "trajectory.txt"), run_in(dir / "run" / "trajectory.txt");
+  std::string whole_line, first_line;
+  for (int i = 0; i <= 40 && std::getline(whole_in, whole_line);)
+    i += whole_line.empty() || whole_line[0] == '#' ? 0 : 1;
+  while (std::getline(run_in, first_line) && (first_line.empty() || first_line[0] == '#')) {
+  }
+  EXPECT_EQ(first_line, whole_line);
+  // The last 20 frames see fewer of the ward's objects than the whole sequence does.
+  const int seen = report.at("objects").at("objects_seen").get<int>();
+  EXPECT_GT(seen, 0);
+  EXPECT_LT(seen, whole.at("objects").at("objects_seen").get<int>());
+
+  ASSERT_EQ(wardmap_cli("-q eval-objects --run " + shq(dir / "run") + " --sequence " + shq(dir / "ward") + " --json " +
+                        shq(dir / "eval.json"))
+                .code,
+            0);
+  const nlohmann::json figures = json_of(dir / "eval.json");
+  EXPECT_EQ(figures.at("objects_seen").get<int>(), seen);
+  EXPECT_NEAR(figures.at("association_accuracy").get<double>(),
+              report.at("objects").at("association_accuracy").get<double>(), 1e-9);
+
+  ASSERT_EQ(wardmap_cli("-q compare " + shq(dir / "ward") + " --no-embedding --first-frame 40 --frames 20 --json " +
+                        shq(dir / "compare.json"))
+                .code,
+            0);
+  const nlohmann::json rows = json_of(dir / "compare.json");
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[1].at("objects_seen").get<int>(), seen);
+  EXPECT_EQ(rows[1].at("landmarks"), report.at("objects").at("landmarks"));
+
+  expect_one_line_error(
+      wardmap_cli("-q run " + shq(dir / "ward") + " --poses gt --first-frame 60 --out " + shq(dir / "past")),
+      "first frame 60 is past the end: the sequence has 60 frames");
+  EXPECT_FALSE(fs::exists(dir / "past" / "report.json"));
+}
+
 TEST(CliObjects, EvalObjectsAndCompare) {
   const fs::path dir = scratch_dir();
   ASSERT_EQ(wardmap_cli("-q synth --scenario ward --variant slow --frames 60 --out " + shq(dir / "ward")).code, 0);

@@ -142,6 +142,73 @@ TEST(VideoReader, DecodesFramesInOrderAndBySeeking) {
   EXPECT_NEAR(r->read(4).image.at<cv::Vec3b>(20, 20)[0], 160, 4);
 }
 
+TEST(Stretch, KeepsFramesAndTheirGroundTruthWithTheirTimestamps) {
+  const fs::path root = scratch_dir();
+  test::make_tum(root);  // frames at 1.0, 1.0333, 1.1 (with depth); ground truth at 1.0, 1.034, 1.066, 1.1
+  ReaderOptions o;
+  o.first_frame = 1;
+  o.frame_count = 1;
+  auto r = open_sequence(root, o);
+  ASSERT_EQ(r->size(), 1u);
+  EXPECT_EQ(r->first_frame(), 1u);
+  EXPECT_EQ(r->info().frame_count, 1u);
+  EXPECT_DOUBLE_EQ(r->timestamp(0), 1.0333);  // the frame keeps its time
+  const Frame f = r->read(0);
+  EXPECT_EQ(f.index, 0u);
+  EXPECT_EQ(f.image.at<cv::Vec3b>(0, 0)[0], 11);
+  ASSERT_TRUE(f.gt_pose.has_value());
+  EXPECT_DOUBLE_EQ(f.gt_pose->translation().x(), 1.0);
+  // Only the ground truth within half a frame period (1/60 s) of the stretch: 1.034, not 1.0 or 1.066.
+  ASSERT_EQ(r->ground_truth().size(), 1u);
+  EXPECT_DOUBLE_EQ(r->ground_truth().timestamps[0], 1.034);
+  EXPECT_NE(r->info().notes.find("frames 1-1 of 3"), std::string::npos) << r->info().notes;
+
+  o.frame_count = 10;  // more than there are: to the end
+  r = open_sequence(root, o);
+  ASSERT_EQ(r->size(), 2u);
+  EXPECT_DOUBLE_EQ(r->timestamp(1), 1.1);
+  EXPECT_EQ(r->read(1).image.at<cv::Vec3b>(0, 0)[0], 13);
+  EXPECT_EQ(r->ground_truth().size(), 3u);  // 1.034, 1.066, 1.1
+
+  o.first_frame = 3;  // past the end: an error naming the sequence and its frame count
+  try {
+    open_sequence(root, o);
+    FAIL() << "a first frame past the end was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(root.string()), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("has 3 frames"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Stretch, KittiGroundTruthAndVideoPositions) {
+  const fs::path root = scratch_dir();
+  test::make_kitti(root);
+  ReaderOptions o;
+  o.first_frame = 2;
+  auto r = open_sequence(root, o);
+  ASSERT_EQ(r->size(), 1u);
+  EXPECT_DOUBLE_EQ(r->timestamp(0), 0.2071);
+  EXPECT_EQ(r->read(0).image.at<uint8_t>(0, 0), 22);
+  ASSERT_EQ(r->ground_truth().size(), 1u);
+  EXPECT_DOUBLE_EQ(r->ground_truth().poses[0].translation().z(), 3.0);
+
+  const fs::path file = scratch_dir() / "clip.avi";
+  {
+    cv::VideoWriter w(file.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 15, {64, 48});
+    if (!w.isOpened()) GTEST_SKIP() << "this OpenCV build cannot write MJPG video";
+    for (int i = 0; i < 6; ++i) w.write(cv::Mat(48, 64, CV_8UC3, cv::Scalar::all(i * 40)));
+  }
+  o.first_frame = 2;
+  o.frame_count = 3;
+  r = open_sequence(file, o);
+  ASSERT_EQ(r->size(), 3u);
+  EXPECT_NEAR(r->timestamp(0), 2.0 / 15, 1e-9);
+  EXPECT_NEAR(r->read(0).image.at<cv::Vec3b>(20, 20)[0], 80, 4);   // the video's frame 2
+  EXPECT_NEAR(r->read(2).image.at<cv::Vec3b>(20, 20)[0], 160, 4);  // frame 4, by seeking
+  EXPECT_NEAR(r->read(1).image.at<cv::Vec3b>(20, 20)[0], 120, 4);  // frame 3, seeking back
+  EXPECT_THROW(r->read(3), InputError);
+}
+
 TEST(SequenceDetection, FormatOverridesAndUnknownLayoutFails) {
   const fs::path root = scratch_dir();
   EXPECT_THROW(open_sequence(root), InputError);  // empty folder
