@@ -43,6 +43,8 @@ void run_eval(const EvalArgs& a) {
     gt = sequence->ground_truth();
     if (gt.empty()) throw InputError(a.gt, "the sequence has no ground truth");
   } else {
+    if (a.reader.first_frame > 0 || a.reader.frames > 0)
+      throw InputError(a.gt, "--first-frame and --frames cut a dataset's frames: give the dataset folder as --gt");
     gt = slam::io::read_trajectory(a.gt, slam::io::PoseFormat::Auto);
   }
   Trajectory est = slam::io::read_trajectory(a.est, slam::io::parse_pose_format(a.est_format));

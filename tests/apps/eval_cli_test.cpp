@@ -11,6 +11,7 @@
 #include "slam/core/sim3.h"
 #include "slam/io/trajectory_io.h"
 #include "tests/apps/cli_support.h"
+#include "tests/slam/io/fixtures.h"
 
 namespace wardmap::test {
 namespace {
@@ -151,6 +152,48 @@ TEST(EvalCli, TumSe3) {
   const nlohmann::json j = run_eval(dir / "gt.txt", dir / "est.txt", "se3");
   EXPECT_NEAR(j["ate"]["rmse"].get<double>(), ref.rmse, 1e-6);
   EXPECT_DOUBLE_EQ(j["scale"].get<double>(), 1.0);
+}
+
+// --first-frame / --frames with a dataset as --gt: the ground truth of the stretch alone, so an
+// estimate of that stretch is fully tracked; with a pose file as --gt they are refused.
+TEST(EvalCli, AStretchOfADatasetIsScoredOnItsOwnFrames) {
+  const fs::path dir = scratch_dir();
+  // TUM RGB-D: 10 frames at 30 Hz with ground truth at x = i; the estimate has frames 5-9, exact.
+  std::string rgb, depth, gt, est;
+  for (int i = 0; i < 10; ++i) {
+    const std::string n = std::to_string(i), t = std::to_string(1.0 + i / 30.0);
+    write_image(dir / "tum" / "rgb" / (n + ".png"), i);
+    write_depth(dir / "tum" / "depth" / (n + ".png"), 5000);
+    rgb += t + " rgb/" + n + ".png\n";
+    depth += t + " depth/" + n + ".png\n";
+    gt += t + " " + n + " 0 0 0 0 0 1\n";
+    if (i >= 5) est += t + " " + n + " 0 0 0 0 0 1\n";
+  }
+  write_text(dir / "tum" / "rgb.txt", rgb);
+  write_text(dir / "tum" / "depth.txt", depth);
+  write_text(dir / "tum" / "groundtruth.txt", gt);
+  write_text(dir / "est.txt", est);
+  const auto eval = [&](const std::string& extra) {
+    const fs::path out = dir / "eval.json";
+    fs::remove(out);
+    const CliResult r = wardmap_cli("eval --gt " + shq(dir / "tum") + " --est " + shq(dir / "est.txt") +
+                                    " --align none --json " + shq(out) + extra);
+    EXPECT_EQ(r.code, 0) << r.output;
+    std::ifstream in(out);
+    return nlohmann::json::parse(in);
+  };
+  const nlohmann::json whole = eval(""), stretch = eval(" --first-frame 5 --frames 5");
+  EXPECT_EQ(whole["pairs"].get<int>(), 5);
+  EXPECT_NEAR(whole["tracking_rate"].get<double>(), 50.0, 0.01);  // frames 0-4 not in the estimate (6-decimal times)
+  EXPECT_EQ(stretch["pairs"].get<int>(), 5);
+  EXPECT_NEAR(stretch["tracking_rate"].get<double>(), 100.0, 0.01);
+  EXPECT_LT(stretch["ate"]["rmse"].get<double>(), 1e-9);
+
+  write_text(dir / "gt.txt", gt);
+  const CliResult refused =
+      wardmap_cli("eval --gt " + shq(dir / "gt.txt") + " --est " + shq(dir / "est.txt") + " --align none --frames 1");
+  EXPECT_EQ(refused.code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("give the dataset folder as --gt"), std::string::npos) << refused.output;
 }
 
 TEST(EvalCli, SharedKittiGroundTruthAgainstItselfIsZero) {
