@@ -2,7 +2,7 @@
 
 namespace wardmap::apps {
 
-void add_reader_options(CLI::App* cmd, ReaderArgs& args, bool range) {
+void add_reader_options(CLI::App* cmd, ReaderArgs& args) {
   cmd->add_option("--format", args.format, "Dataset kind instead of detecting it from the layout")
       ->check(CLI::IsMember({"tum", "kitti", "euroc", "7scenes", "folder", "video"}));
   cmd->add_option("--rate", args.rate, "Frame rate of an image folder (Hz)")
@@ -10,7 +10,6 @@ void add_reader_options(CLI::App* cmd, ReaderArgs& args, bool range) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--kitti-camera", args.kitti_camera, "KITTI camera folder: image_0 (default) or image_2")
       ->check(CLI::IsMember({"image_0", "image_2"}));
-  if (!range) return;
   cmd->add_option("--first-frame", args.first_frame,
                   "Start at this frame (0-based, in the dataset's order); the frames keep their timestamps, and the "
                   "ground truth is cut to the stretch");

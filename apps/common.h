@@ -16,8 +16,8 @@ struct ReaderArgs {
   size_t first_frame = 0;    // 0-based, in the dataset's order
   size_t frames = 0;         // 0: to the end
 };
-// Adds those options to a command; with `range` false, only the first three.
-void add_reader_options(CLI::App* cmd, ReaderArgs& args, bool range = true);
+// Adds those options to a command.
+void add_reader_options(CLI::App* cmd, ReaderArgs& args);
 slam::io::ReaderOptions reader_options(const ReaderArgs& args);
 
 }  // namespace wardmap::apps
