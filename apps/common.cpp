@@ -11,8 +11,8 @@ void add_reader_options(CLI::App* cmd, ReaderArgs& args) {
   cmd->add_option("--kitti-camera", args.kitti_camera, "KITTI camera folder: image_0 (default) or image_2")
       ->check(CLI::IsMember({"image_0", "image_2"}));
   cmd->add_option("--first-frame", args.first_frame,
-                  "Start at this frame (0-based, in the dataset's order); the frames keep their timestamps, and the "
-                  "ground truth is cut to the stretch");
+                  "Start at this frame (0-based, among the frames `wardmap info` counts: a TUM colour frame without "
+                  "depth is not one); the frames keep their timestamps, and the ground truth is cut to the stretch");
   cmd->add_option("--frames", args.frames, "Use at most this many frames (from --first-frame; default: to the end)")
       ->check(CLI::PositiveNumber);
 }

@@ -13,7 +13,7 @@ struct ReaderArgs {
   std::string format;        // empty: detected from the layout
   double rate = 30.0;        // image folder, Hz
   std::string kitti_camera;  // empty: image_0 when present
-  size_t first_frame = 0;    // 0-based, in the dataset's order
+  size_t first_frame = 0;    // 0-based, among the frames the reader keeps
   size_t frames = 0;         // 0: to the end
 };
 // Adds those options to a command.

@@ -54,8 +54,9 @@ struct ReaderOptions {
   double rate = 30.0;                // image folder: frames per second
   std::string kitti_camera;          // "image_0" | "image_2"; empty: image_0 if present
   std::optional<double> depth_factor;  // overrides the dataset's default
-  // A stretch of the sequence: frames from first_frame (0-based, in the dataset's order), at most
-  // frame_count of them (0: to the end). See SequenceReader::keep_frames.
+  // A stretch of the sequence: frames from first_frame (0-based, among the frames the reader keeps:
+  // TUM colour frames without depth are dropped first), at most frame_count of them (0: to the
+  // end). See SequenceReader::keep_frames.
   size_t first_frame = 0;
   size_t frame_count = 0;
 };
