@@ -12,7 +12,6 @@ namespace wardmap::apps {
 
 struct SlamJob {
   std::filesystem::path sequence;
-  slam::io::ReaderOptions reader;  // --format, --first-frame, --frames, ...
   std::filesystem::path settings;  // empty: default_settings(the sequence's info)
   std::filesystem::path out;
   std::string mode;  // "rgbd", "mono", or empty: rgbd when the sequence has depth, else mono
@@ -24,6 +23,7 @@ struct SlamJob {
   // Feed the frames no faster than their timestamps, as a live camera would, so that the mapper
   // thread has the time it would have live (offline input otherwise arrives 3-8x faster). Threaded only.
   bool realtime = false;
+  slam::io::ReaderOptions reader{};  // --format, --first-frame, --frames, ...
 };
 
 // The place-recognition vocabulary: `given`, else $WARDMAP_VOCABULARY, else the project's shipped one;

@@ -450,7 +450,7 @@ std::vector<std::pair<int, int>> track_in_group(const std::vector<int>& group_ke
         const auto a = anchors.find(t.id);
         if (a == anchors.end()) return std::nullopt;
         if (a->second.side_cut)  // its image box, cut by the image as a detection is
-          if (const auto box = project_box(*a->second.side_cut, views->camera, views->T_wc[kf])) return box;
+          if (const auto box = projected_box(*a->second.side_cut, *views, kf)) return box;
         const Eigen::Vector3d pc = T_cw * a->second.p_world;
         if (pc.z() < 0.1) return std::nullopt;
         const Eigen::Vector2d c = views->camera.project(pc);

@@ -33,17 +33,10 @@ void run(RunArgs& a) {
     throw InputError(a.job.out.string(), "--out names a file; it must be a folder (new or existing)");
   if (a.poses == "slam") {
     spdlog::info("run: {} (SLAM front-process{})", a.job.sequence.string(), a.mode.empty() ? "" : ", " + a.mode);
-    SlamJob s;
-    s.sequence = a.job.sequence;
-    s.reader = a.job.reader;
-    s.settings = a.job.settings;
-    s.out = a.job.out;
-    s.mode = a.mode;
-    s.progress = a.job.progress;
-    s.deterministic = a.deterministic;
-    s.vocabulary = a.vocabulary;
-    s.objects = a.objects ? &a.job : nullptr;
+    SlamJob s{a.job.sequence, a.job.settings, a.job.out, a.mode, a.job.progress, a.deterministic, a.vocabulary,
+              a.objects ? &a.job : nullptr};
     s.realtime = a.realtime;
+    s.reader = a.job.reader;
     run_slam_job(s);
     return;
   }
