@@ -143,17 +143,42 @@ std::vector<std::pair<int, int>> keyframe_measurements_of(const std::vector<int>
   return out;
 }
 
+int keyframes_detected_apart(const std::vector<std::pair<int, int>>& a, const std::vector<std::pair<int, int>>& b,
+                             int stop_at) {
+  // Walk both sorted lists per keyframe.
+  int n = 0;
+  auto i = a.begin(), j = b.begin();
+  while (i != a.end() && j != b.end() && n < stop_at) {
+    if (i->first < j->first) {
+      ++i;
+    } else if (j->first < i->first) {
+      ++j;
+    } else if (i->second != j->second) {  // counted once per keyframe
+      const int kf = i->first;
+      ++n;
+      while (i != a.end() && i->first == kf) ++i;
+      while (j != b.end() && j->first == kf) ++j;
+    } else {
+      ++i, ++j;
+    }
+  }
+  return n;
+}
+
+bool detected_apart_in_share(const std::vector<std::pair<int, int>>& a, const std::vector<std::pair<int, int>>& b,
+                             double min_share) {
+  const auto keyframes = [](const std::vector<std::pair<int, int>>& k) {  // sorted by keyframe
+    int n = 0;
+    for (size_t i = 0; i < k.size(); ++i) n += i == 0 || k[i].first != k[i - 1].first;
+    return n;
+  };
+  const int fewer = std::min(keyframes(a), keyframes(b));
+  return fewer > 0 && keyframes_detected_apart(a, b) >= min_share * fewer;
+}
+
 bool detected_apart_in_one_keyframe(const std::vector<std::pair<int, int>>& a,
                                     const std::vector<std::pair<int, int>>& b) {
-  // Walk both sorted lists per keyframe.
-  auto i = a.begin(), j = b.begin();
-  while (i != a.end() && j != b.end()) {
-    if (i->first < j->first) ++i;
-    else if (j->first < i->first) ++j;
-    else if (i->second != j->second) return true;
-    else ++i, ++j;
-  }
-  return false;
+  return keyframes_detected_apart(a, b, 1) > 0;
 }
 
 bool AssociationModel::cannot_link(const hdp::ItemRef& a, const hdp::ItemRef& b) const {

@@ -6,6 +6,7 @@
 // the likelihood.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "hdp/crf_model.h"
@@ -37,6 +38,12 @@ std::vector<std::pair<int, int>> keyframe_measurements_of(const std::vector<int>
 // (a detector gives one box per object and keyframe). Takes sorted (keyframe, id) lists.
 bool detected_apart_in_one_keyframe(const std::vector<std::pair<int, int>>& a,
                                     const std::vector<std::pair<int, int>>& b);
+// In how many keyframes they were (counting stops at `stop_at`).
+int keyframes_detected_apart(const std::vector<std::pair<int, int>>& a, const std::vector<std::pair<int, int>>& b,
+                             int stop_at = std::numeric_limits<int>::max());
+// Whether they were, in at least `min_share` (> 0) of the keyframes of the one seen in fewer.
+bool detected_apart_in_share(const std::vector<std::pair<int, int>>& a, const std::vector<std::pair<int, int>>& b,
+                             double min_share);
 
 class AssociationModel : public hdp::CrfModel {
  public:

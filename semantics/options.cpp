@@ -60,6 +60,7 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(association.min_measurements, 1, 10000, "association.min_measurements");
   c(association.min_placed_measurements, 1, 10000, "association.min_placed_measurements");
   c(association.border_min_measurements, 1, 10000, "association.border_min_measurements");
+  c(association.place_apart_min_share, 0.0, 1.0, "association.place_apart_min_share");
   c(association.border_min_placed_measurements, 1, 10000, "association.border_min_placed_measurements");
   c(association.border_touch_px, 0, 1e4, "association.border_touch_px");
   c(association.border_reprojection_iou, 0, 1, "association.border_reprojection_iou");
@@ -176,6 +177,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   ak.read("border_side_cut_poses", o.association.border_side_cut_poses);
   ak.read("border_side_cut_floor_tolerance", o.association.border_side_cut_floor_tolerance);
   ak.read("merge_contained", o.association.merge_contained);
+  ak.read("place_apart_min_share", o.association.place_apart_min_share);
   ak.read("drop_inside_other_class", o.association.drop_inside_other_class);
   ak.read("bridge_unplaced_tracks", o.association.bridge_unplaced_tracks);
   ak.read("one_per_keyframe", o.association.one_per_keyframe);

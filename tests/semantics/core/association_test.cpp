@@ -397,6 +397,112 @@ TEST(Association, LandmarkInsideAStrongerOneOfItsClassJoinsIt) {
   EXPECT_EQ(row.size(), 2u);
 }
 
+// A keyframe where two lists hold different measurements counts once, however many they hold there.
+TEST(Association, KeyframesDetectedApartAreCountedOncePerKeyframe) {
+  const std::vector<std::pair<int, int>> a = {{1, 10}, {2, 20}, {2, 21}, {3, 30}, {5, 50}};
+  const std::vector<std::pair<int, int>> b = {{1, 11}, {2, 22}, {3, 30}, {4, 40}, {5, 51}};
+  EXPECT_EQ(keyframes_detected_apart(a, b), 3);  // 1, 2 and 5; 3 is one shared measurement
+  EXPECT_EQ(keyframes_detected_apart(b, a), 3);
+  EXPECT_EQ(keyframes_detected_apart(a, b, 2), 2);
+  EXPECT_EQ(keyframes_detected_apart(a, a), 0);
+  EXPECT_TRUE(detected_apart_in_one_keyframe(a, b));
+  EXPECT_FALSE(detected_apart_in_one_keyframe(a, {{3, 30}, {4, 40}}));
+  // Shares of the keyframes of the one seen in fewer (a: 4, b: 5).
+  EXPECT_TRUE(detected_apart_in_share(a, b, 0.75));
+  EXPECT_FALSE(detected_apart_in_share(a, b, 0.8));
+  // Fragments of one object: apart only where one holds a neighbour's box (1 of 4 keyframes).
+  const std::vector<std::pair<int, int>> fragment = {{1, 10}, {6, 60}, {7, 70}, {8, 80}};
+  EXPECT_FALSE(detected_apart_in_share(fragment, b, 0.5));
+  EXPECT_TRUE(detected_apart_in_share(fragment, b, 0.25));
+  EXPECT_FALSE(detected_apart_in_share({}, b, 0.1));
+}
+
+// Two chairs of a row seen end-on (aisle_straight_quick_5): the farther one's boxes were measured on
+// the nearer in some keyframes, and its landmark was placed there. Detected apart, they are two
+// objects: the one with more placed measurements outside the other's footprint is placed from those,
+// and both stay; without place_apart it is merged.
+TEST(Association, TwoChairsDetectedApartAreNotMergedButPlacedApart) {
+  std::vector<ObjectMeasurement> ms;
+  const auto add = [&](double x, double size = 0.5) {
+    ObjectMeasurement m;
+    m.id = static_cast<int>(ms.size());
+    m.keyframe = m.id;
+    m.label = "chair";
+    m.pose = ObjectPose{slam::SE3(Eigen::Quaterniond::Identity(), Eigen::Vector3d(x, -1.0, 0.4)),
+                        Eigen::Vector3d(size, size, 0.85)};
+    ms.push_back(m);
+    return m.id;
+  };
+  // The medoid along x of the placed measurements (Eq. 4-6 stand-in).
+  const auto place = [&](ObjectLandmark& l) {
+    double best = std::numeric_limits<double>::infinity();
+    for (int i : l.measurements) {
+      if (!ms[i].pose) continue;
+      double sum = 0;
+      for (int j : l.measurements)
+        if (ms[j].pose) sum += std::abs(ms[i].pose->pose.translation().x() - ms[j].pose->pose.translation().x());
+      if (sum < best) best = sum, l.pose_measurement = i, l.pose = *ms[i].pose;
+    }
+  };
+  ObjectLandmark near, far;
+  near.label = far.label = "chair";
+  for (int i = 0; i < 6; ++i) near.measurements.push_back(add(10.27));
+  for (int i = 0; i < 4; ++i) far.measurements.push_back(add(10.9));
+  for (int i = 0; i < 3; ++i) far.measurements.push_back(add(10.3));
+  place(near);
+  far.pose = ms[far.measurements.back()].pose.value();  // placed on the nearer chair's measurements
+  far.pose_measurement = far.measurements.back();
+  const std::vector<int> far_ids = far.measurements;
+
+  ObjectLandmark a = far, b = near;
+  EXPECT_EQ(place_apart(a, b, ms, place, 5), nullptr);  // 4 placed outside: too few
+  EXPECT_EQ(a.pose_measurement, far.pose_measurement);
+  ASSERT_EQ(place_apart(a, b, ms, place, 3), &a);
+  EXPECT_NEAR(a.pose.pose.translation().x(), 10.9, 1e-9);
+  EXPECT_EQ(a.measurements, far_ids);  // measurements stay
+  EXPECT_EQ(b.pose_measurement, near.pose_measurement);
+  a = far, b = near;
+  ASSERT_EQ(place_apart(b, a, ms, place, 3), &a);  // either order: the one with more outside moves
+  EXPECT_NEAR(a.pose.pose.translation().x(), 10.9, 1e-9);
+  EXPECT_NEAR(b.pose.pose.translation().x(), 10.27, 1e-9);
+
+  // Placed from the outside ones, its footprint would hold the other's centre: not moved.
+  ObjectLandmark wide = far;
+  wide.measurements.erase(wide.measurements.begin(), wide.measurements.begin() + 4);  // the 3 at 10.3
+  for (int i = 0; i < 3; ++i) wide.measurements.push_back(add(10.9, 1.6));
+  EXPECT_EQ(place_apart(wide, b, ms, place, 3), nullptr);
+  EXPECT_EQ(wide.pose_measurement, far.pose_measurement);
+
+  const auto apart = [&](ObjectLandmark& x, ObjectLandmark& y) { return place_apart(x, y, ms, place, 3); };
+  std::vector<ObjectLandmark> merged = {near, far}, kept = {near, far};
+  merge_contained_landmarks(merged, place);
+  EXPECT_EQ(merged.size(), 1u);
+  merge_contained_landmarks(kept, place, nullptr, apart);
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_NEAR(kept[1].pose.pose.translation().x(), 10.9, 1e-9);
+  EXPECT_EQ(kept[1].measurements, far_ids);
+  // Moved apart onto a third chair's place (ward_slow_5: a split chair between two neighbours), it
+  // would stand in that one: the poses are restored and the pair merges, as without place_apart.
+  ObjectLandmark third;
+  third.label = "chair";
+  for (int i = 0; i < 20; ++i) third.measurements.push_back(add(10.85));
+  place(third);
+  std::vector<ObjectLandmark> row = {third, near, far};
+  merge_contained_landmarks(row, place, nullptr, apart);
+  ASSERT_EQ(row.size(), 2u);
+  EXPECT_EQ(row[0].measurements.size(), 20u);
+  EXPECT_EQ(row[1].measurements.size(), 13u);
+  EXPECT_NEAR(row[0].pose.pose.translation().x(), 10.85, 1e-9);
+}
+
+TEST(Association, PlaceApartShareLoadsAndABadValueIsNamed) {
+  EXPECT_DOUBLE_EQ(SemanticOptions().association.place_apart_min_share, 0.5);
+  EXPECT_DOUBLE_EQ(load_semantic_options(YAML::Load("association: {place_apart_min_share: 0}"), "s.yaml")
+                       .association.place_apart_min_share,
+                   0.0);
+  test::expect_load_error_names("association: {place_apart_min_share: 1.5}", "association.place_apart_min_share");
+}
+
 // A landmark inside the 3-D box of a landmark of another class with more measurements is dropped;
 // one above that box, of a support class or under one, with as many measurements, or of the same
 // class (merge_contained's work) stays.
