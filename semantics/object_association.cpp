@@ -125,7 +125,7 @@ void drop_border_landmarks_on_others(std::vector<ObjectLandmark>& landmarks, con
 }  // namespace
 
 ObjectLandmark* place_apart(ObjectLandmark& a, ObjectLandmark& b, const std::vector<ObjectMeasurement>& ms,
-                            const std::function<void(ObjectLandmark&)>& place, int min_placed) {
+                            const std::function<void(ObjectLandmark&)>& place, int min_placed, const FreePose& free) {
   const auto outside = [&](const ObjectLandmark& l, const ObjectLandmark& other) {
     std::vector<int> ids;
     for (int id : l.measurements)
@@ -133,29 +133,42 @@ ObjectLandmark* place_apart(ObjectLandmark& a, ObjectLandmark& b, const std::vec
     return ids;
   };
   const std::vector<int> outside_a = outside(a, b), outside_b = outside(b, a);
-  const bool move_a = outside_a.size() >= outside_b.size();
-  ObjectLandmark& moved = move_a ? a : b;
-  const ObjectLandmark& other = move_a ? b : a;
-  ObjectLandmark probe;
-  probe.label = moved.label;
-  probe.measurements = move_a ? outside_a : outside_b;
-  if (static_cast<int>(probe.measurements.size()) < std::max(1, min_placed)) return nullptr;
-  place(probe);
-  if (inside_box(other.pose, probe.pose.pose.translation()) || inside_box(probe.pose, other.pose.pose.translation()))
-    return nullptr;
-  moved.pose = probe.pose;
-  moved.pose_measurement = probe.pose_measurement;
-  return &moved;
+  const bool a_first = outside_a.size() >= outside_b.size();
+  for (const bool move_a : {a_first, !a_first}) {
+    ObjectLandmark& moved = move_a ? a : b;
+    const ObjectLandmark& other = move_a ? b : a;
+    ObjectLandmark probe;
+    probe.label = moved.label;
+    probe.measurements = move_a ? outside_a : outside_b;
+    if (static_cast<int>(probe.measurements.size()) < std::max(1, min_placed)) continue;
+    place(probe);
+    if (inside_box(other.pose, probe.pose.pose.translation()) ||
+        inside_box(probe.pose, other.pose.pose.translation()) || (free && !free(moved, probe.pose)))
+      continue;
+    moved.pose = probe.pose;
+    moved.pose_measurement = probe.pose_measurement;
+    return &moved;
+  }
+  return nullptr;
 }
 
 void merge_contained_landmarks(std::vector<ObjectLandmark>& landmarks,
                                const std::function<void(ObjectLandmark&)>& place,
                                const std::function<bool(const ObjectLandmark&, const ObjectLandmark&)>& never_together,
-                               const std::function<ObjectLandmark*(ObjectLandmark&, ObjectLandmark&)>& place_apart) {
+                               const PlaceApart& place_apart) {
   // Each landmark is tested against the stronger ones that are still kept, with their poses after
   // any merge.
   const std::vector<size_t> order = strongest_first(landmarks);
   std::vector<bool> gone(landmarks.size(), false);
+  // Clear of every other kept landmark of its class (neither inside the other's footprint).
+  const FreePose free = [&](const ObjectLandmark& l, const ObjectPose& pose) {
+    for (size_t k = 0; k < landmarks.size(); ++k)
+      if (!gone[k] && &landmarks[k] != &l && landmarks[k].label == l.label &&
+          (inside_box(landmarks[k].pose, pose.pose.translation()) ||
+           inside_box(pose, landmarks[k].pose.pose.translation())))
+        return false;
+    return true;
+  };
   for (size_t oi = 1; oi < order.size(); ++oi) {
     ObjectLandmark& weak = landmarks[order[oi]];
     for (size_t si = 0; si < oi; ++si) {
@@ -167,18 +180,7 @@ void merge_contained_landmarks(std::vector<ObjectLandmark>& landmarks,
           !(inside_box(strong.pose, weak.pose.pose.translation()) ||
             (never_together && inside_box(weak.pose, strong.pose.pose.translation()) && never_together(strong, weak))))
         continue;
-      if (place_apart) {  // two objects: one moved apart, clear of every other landmark of its class
-        const ObjectLandmark weak_before = weak, strong_before = strong;
-        if (const ObjectLandmark* moved = place_apart(weak, strong)) {
-          bool clear = true;
-          for (size_t k = 0; k < landmarks.size() && clear; ++k)
-            clear = gone[k] || &landmarks[k] == moved || landmarks[k].label != moved->label ||
-                    !(inside_box(landmarks[k].pose, moved->pose.pose.translation()) ||
-                      inside_box(moved->pose, landmarks[k].pose.pose.translation()));
-          if (clear) continue;
-          weak = weak_before, strong = strong_before;
-        }
-      }
+      if (place_apart && place_apart(weak, strong, free)) continue;  // two objects: one moved apart
       strong.measurements.insert(strong.measurements.end(), weak.measurements.begin(), weak.measurements.end());
       std::sort(strong.measurements.begin(), strong.measurements.end());
       place(strong);
@@ -766,12 +768,12 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   };
   // Two objects detected apart in at least place_apart_min_share of their keyframes: one may be
   // moved apart instead of merged.
-  const auto apart = [&](ObjectLandmark& a, ObjectLandmark& b) -> ObjectLandmark* {
+  const auto apart = [&](ObjectLandmark& a, ObjectLandmark& b, const FreePose& free) -> ObjectLandmark* {
     if (ao.place_apart_min_share <= 0 ||
         !detected_apart_in_share(keyframe_measurements_of(a.measurements, ms),
                                  keyframe_measurements_of(b.measurements, ms), ao.place_apart_min_share))
       return nullptr;
-    return place_apart(a, b, ms, place, ao.min_placed_measurements);
+    return place_apart(a, b, ms, place, ao.min_placed_measurements, free);
   };
   if (options.association.merge_contained && !hdp_only)
     merge_contained_landmarks(candidates, place, never_together, apart);

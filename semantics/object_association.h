@@ -44,22 +44,27 @@ struct AssociationResult {
 // `never_together` says the two were never measured in one keyframe, is merged into it, and `place`
 // chooses the merged landmark's pose again. Landmarks keep their order; ids are left to the caller.
 // Hierarchical mode only.
-// When `place_apart` is given and moves one of a pair apart (it returns the one moved), clear of
-// every other landmark of its class, the two stay; else the pair's poses are restored and they merge.
+// When `place_apart` is given and moves one of a pair apart (it returns the one moved; its last
+// argument says whether a pose is free for a landmark: clear of every other kept landmark of its
+// class), the two stay; else they merge.
+using FreePose = std::function<bool(const ObjectLandmark&, const ObjectPose&)>;
+using PlaceApart = std::function<ObjectLandmark*(ObjectLandmark&, ObjectLandmark&, const FreePose&)>;
 void merge_contained_landmarks(
     std::vector<ObjectLandmark>& landmarks, const std::function<void(ObjectLandmark&)>& place,
     const std::function<bool(const ObjectLandmark&, const ObjectLandmark&)>& never_together = nullptr,
-    const std::function<ObjectLandmark*(ObjectLandmark&, ObjectLandmark&)>& place_apart = nullptr);
+    const PlaceApart& place_apart = nullptr);
 
 // Two landmarks of one class detected apart in keyframes are two objects even when one stands
 // inside the other's footprint: one was placed on measurements taken on its neighbour (a row of
-// chairs seen end-on, the farther one's boxes measured on the nearer). The one of `a` and `b` with
-// more placed measurements outside the other's footprint (`a` on a tie) is placed from those alone
-// by `place` (Assoc. Eq. 4-6 over them), when it has at least `min_placed` and its new position and
-// the other's footprint keep clear of each other. Returns the one moved, or null; measurements stay
+// chairs seen end-on, the farther one's boxes measured on the nearer). One of `a` and `b` is placed
+// by `place` (Assoc. Eq. 4-6) from its placed measurements outside the other's footprint alone,
+// when it has at least `min_placed` of them, its new position and the other's footprint keep clear
+// of each other, and `free` (when given) accepts the new pose. The one with more such measurements
+// is tried first (`a` on a tie), then the other. Returns the one moved, or null; measurements stay
 // with their landmarks (association.place_apart_min_share, our addition).
 ObjectLandmark* place_apart(ObjectLandmark& a, ObjectLandmark& b, const std::vector<ObjectMeasurement>& ms,
-                            const std::function<void(ObjectLandmark&)>& place, int min_placed);
+                            const std::function<void(ObjectLandmark&)>& place, int min_placed,
+                            const FreePose& free = nullptr);
 
 // Group objects none of whose measurements could be placed never reach the sampler, so a track
 // that runs through keyframes without poses (a bed seen from above, cut by the bottom border)

@@ -473,7 +473,9 @@ TEST(Association, TwoChairsDetectedApartAreNotMergedButPlacedApart) {
   EXPECT_EQ(place_apart(wide, b, ms, place, 3), nullptr);
   EXPECT_EQ(wide.pose_measurement, far.pose_measurement);
 
-  const auto apart = [&](ObjectLandmark& x, ObjectLandmark& y) { return place_apart(x, y, ms, place, 3); };
+  const auto apart = [&](ObjectLandmark& x, ObjectLandmark& y, const FreePose& free) {
+    return place_apart(x, y, ms, place, 3, free);
+  };
   std::vector<ObjectLandmark> merged = {near, far}, kept = {near, far};
   merge_contained_landmarks(merged, place);
   EXPECT_EQ(merged.size(), 1u);
@@ -482,7 +484,8 @@ TEST(Association, TwoChairsDetectedApartAreNotMergedButPlacedApart) {
   EXPECT_NEAR(kept[1].pose.pose.translation().x(), 10.9, 1e-9);
   EXPECT_EQ(kept[1].measurements, far_ids);
   // Moved apart onto a third chair's place (ward_slow_5: a split chair between two neighbours), it
-  // would stand in that one: the poses are restored and the pair merges, as without place_apart.
+  // would stand in that one, and the other has nothing outside: the pair merges, as without
+  // place_apart.
   ObjectLandmark third;
   third.label = "chair";
   for (int i = 0; i < 20; ++i) third.measurements.push_back(add(10.85));
@@ -493,6 +496,32 @@ TEST(Association, TwoChairsDetectedApartAreNotMergedButPlacedApart) {
   EXPECT_EQ(row[0].measurements.size(), 20u);
   EXPECT_EQ(row[1].measurements.size(), 13u);
   EXPECT_NEAR(row[0].pose.pose.translation().x(), 10.85, 1e-9);
+
+  // The first choice would land on a third chair, the second is free (aisle_straight_slow_5, noise
+  // 3: chair 12's landmark has more measurements outside, on chair 11; chair 13's lie on chair 13).
+  ObjectLandmark front, middle;
+  front.label = middle.label = "chair";
+  for (int i = 0; i < 20; ++i) front.measurements.push_back(add(9.61));
+  place(front);
+  for (int i = 0; i < 6; ++i) middle.measurements.push_back(add(10.22));
+  for (int i = 0; i < 5; ++i) middle.measurements.push_back(add(9.61));
+  place(middle);
+  ASSERT_NEAR(middle.pose.pose.translation().x(), 10.22, 1e-9);
+  ObjectLandmark first = middle, second = far;
+  const auto free_of_front = [&](const ObjectLandmark&, const ObjectPose& pose) {
+    return std::abs(pose.pose.translation().x() - 9.61) > 0.25;
+  };
+  EXPECT_EQ(place_apart(first, second, ms, place, 3), &first);  // without `free`: the first choice
+  EXPECT_NEAR(first.pose.pose.translation().x(), 9.61, 1e-9);
+  first = middle;
+  EXPECT_EQ(place_apart(first, second, ms, place, 3, free_of_front), &second);
+  EXPECT_NEAR(second.pose.pose.translation().x(), 10.9, 1e-9);
+  EXPECT_NEAR(first.pose.pose.translation().x(), 10.22, 1e-9);
+  std::vector<ObjectLandmark> three = {front, middle, far};
+  merge_contained_landmarks(three, place, nullptr, apart);
+  ASSERT_EQ(three.size(), 3u);
+  EXPECT_NEAR(three[1].pose.pose.translation().x(), 10.22, 1e-9);
+  EXPECT_NEAR(three[2].pose.pose.translation().x(), 10.9, 1e-9);
 }
 
 TEST(Association, PlaceApartShareLoadsAndABadValueIsNamed) {
