@@ -60,10 +60,10 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(association.min_measurements, 1, 10000, "association.min_measurements");
   c(association.min_placed_measurements, 1, 10000, "association.min_placed_measurements");
   c(association.border_min_measurements, 1, 10000, "association.border_min_measurements");
-  c(association.place_apart_min_share, 0.0, 1.0, "association.place_apart_min_share");
   c(association.border_min_placed_measurements, 1, 10000, "association.border_min_placed_measurements");
   c(association.border_touch_px, 0, 1e4, "association.border_touch_px");
   c(association.border_reprojection_iou, 0, 1, "association.border_reprojection_iou");
+  c(association.place_apart_min_share, 0.0, 1.0, "association.place_apart_min_share");
   c(association.border_side_cut_floor_tolerance, 0.01, 10, "association.border_side_cut_floor_tolerance");
   c(association.reproject_min_iou, 0, 1, "association.reproject_min_iou");
   c(association.reproject_margin, 0, 1, "association.reproject_margin");

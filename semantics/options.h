@@ -203,11 +203,12 @@ struct AssociationOptions {
   // by 0.25-5.0 points).
   bool merge_contained = true;
   // ... unless the two were detected apart (two boxes of one keyframe) in at least this share of
-  // the keyframes of the one with fewer: then they are two objects, and the one with more placed
-  // measurements outside the other's footprint is placed from those alone (place_apart; a row of
-  // chairs seen end-on, the farther one's boxes measured on the nearer in some keyframes; our
-  // addition). A share, not a count: a split object's fragments are detected apart wherever one
-  // holds a box of a neighbour. 0: off (merged).
+  // the keyframes of the one with fewer: then they are two objects, and one of them is placed from
+  // its placed measurements outside the other's footprint alone, where no other landmark of the
+  // class stands (place_apart: the one with more such measurements first; a row of chairs seen
+  // end-on, the farther one's boxes measured on the nearer in some keyframes; our addition). If
+  // neither can be, they merge. A share, not a count: a split object's fragments are detected apart
+  // wherever one holds a box of a neighbour. 0: off (always merged).
   double place_apart_min_share = 0.5;
   // A reported landmark whose position lies inside the 3-D box of a landmark of another class with
   // more measurements (support classes excepted) was measured on that object, and is dropped (our
