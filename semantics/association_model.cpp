@@ -154,8 +154,8 @@ int keyframes_detected_apart(const std::vector<std::pair<int, int>>& a, const st
     } else if (j->first < i->first) {
       ++j;
     } else if (i->second != j->second) {  // counted once per keyframe
+      if (++n >= stop_at) break;
       const int kf = i->first;
-      ++n;
       while (i != a.end() && i->first == kf) ++i;
       while (j != b.end() && j->first == kf) ++j;
     } else {

@@ -53,6 +53,11 @@ bool inside_box(const ObjectPose& box, const Eigen::Vector3d& p, bool whole_box 
          (!whole_box || std::abs(local.z()) <= 0.5 * box.size.z());
 }
 
+// Whether either box's footprint holds the other's centre.
+bool footprints_meet(const ObjectPose& a, const ObjectPose& b) {
+  return inside_box(a, b.pose.translation()) || inside_box(b, a.pose.translation());
+}
+
 // Landmark indices, most measurements first (the earlier on a tie).
 std::vector<size_t> strongest_first(const std::vector<ObjectLandmark>& landmarks) {
   std::vector<size_t> order(landmarks.size());
@@ -142,9 +147,7 @@ ObjectLandmark* place_apart(ObjectLandmark& a, ObjectLandmark& b, const std::vec
     probe.measurements = move_a ? outside_a : outside_b;
     if (static_cast<int>(probe.measurements.size()) < std::max(1, min_placed)) continue;
     place(probe);
-    if (inside_box(other.pose, probe.pose.pose.translation()) ||
-        inside_box(probe.pose, other.pose.pose.translation()) || (free && !free(moved, probe.pose)))
-      continue;
+    if (footprints_meet(other.pose, probe.pose) || (free && !free(moved, probe.pose))) continue;
     moved.pose = probe.pose;
     moved.pose_measurement = probe.pose_measurement;
     return &moved;
@@ -163,9 +166,7 @@ void merge_contained_landmarks(std::vector<ObjectLandmark>& landmarks,
   // Clear of every other kept landmark of its class (neither inside the other's footprint).
   const FreePose free = [&](const ObjectLandmark& l, const ObjectPose& pose) {
     for (size_t k = 0; k < landmarks.size(); ++k)
-      if (!gone[k] && &landmarks[k] != &l && landmarks[k].label == l.label &&
-          (inside_box(landmarks[k].pose, pose.pose.translation()) ||
-           inside_box(pose, landmarks[k].pose.pose.translation())))
+      if (!gone[k] && &landmarks[k] != &l && landmarks[k].label == l.label && footprints_meet(landmarks[k].pose, pose))
         return false;
     return true;
   };
