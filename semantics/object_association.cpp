@@ -58,6 +58,21 @@ bool footprints_meet(const ObjectPose& a, const ObjectPose& b) {
   return inside_box(a, b.pose.translation()) || inside_box(b, a.pose.translation());
 }
 
+// The most of the measurements `ids` that lie in `n` adjacent groups (group_of: per measurement;
+// -1, none, is not counted).
+int most_in_adjacent_groups(const std::vector<int>& ids, const std::vector<int>& group_of, int n) {
+  std::vector<int> g;
+  for (int id : ids)
+    if (group_of[static_cast<size_t>(id)] >= 0) g.push_back(group_of[static_cast<size_t>(id)]);
+  std::sort(g.begin(), g.end());
+  int most = 0;
+  for (size_t i = 0, j = 0; j < g.size(); ++j) {
+    while (g[j] - g[i] >= n) ++i;
+    most = std::max(most, static_cast<int>(j - i + 1));
+  }
+  return most;
+}
+
 // Landmark indices, most measurements first (the earlier on a tie).
 std::vector<size_t> strongest_first(const std::vector<ObjectLandmark>& landmarks) {
   std::vector<size_t> order(landmarks.size());
@@ -709,10 +724,13 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
     l.pose = poses[pick];
   };
   const auto reportable = [&](const std::vector<int>& ids, const std::string& label) {
-    // Seen mostly at the image's left or right border: fewer measurements, fewer placed for the
-    // thin classes (association.border_min_measurements, border_min_placed_measurements).
+    // Seen mostly at the image's left or right border, in one pass: fewer measurements, fewer placed
+    // for the thin classes (association.border_min_measurements, border_min_placed_measurements,
+    // border_pass_groups).
     int min_count = ao.min_measurements, min_placed = ao.min_placed_measurements;
-    if (views && !hdp_only && mostly_at_side_border(ids, ms, views->camera, ao.border_touch_px)) {
+    if (views && !hdp_only && mostly_at_side_border(ids, ms, views->camera, ao.border_touch_px) &&
+        (ao.border_pass_groups == 0 ||
+         most_in_adjacent_groups(ids, r.group_of, ao.border_pass_groups) >= ao.border_min_measurements)) {
       min_count = std::min(min_count, ao.border_min_measurements);
       min_placed = std::min(min_placed, options.thin_classes.count(label) ? ao.border_min_placed_measurements : min_count);
     }

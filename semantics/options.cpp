@@ -62,6 +62,7 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(association.border_min_measurements, 1, 10000, "association.border_min_measurements");
   c(association.border_min_placed_measurements, 1, 10000, "association.border_min_placed_measurements");
   c(association.border_touch_px, 0, 1e4, "association.border_touch_px");
+  c(association.border_pass_groups, 0, 10000, "association.border_pass_groups");
   c(association.border_reprojection_iou, 0, 1, "association.border_reprojection_iou");
   c(association.place_apart_min_share, 0.0, 1.0, "association.place_apart_min_share");
   c(association.border_side_cut_floor_tolerance, 0.01, 10, "association.border_side_cut_floor_tolerance");
@@ -172,6 +173,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   ak.read("border_min_measurements", o.association.border_min_measurements);
   ak.read("border_min_placed_measurements", o.association.border_min_placed_measurements);
   ak.read("border_touch_px", o.association.border_touch_px);
+  ak.read("border_pass_groups", o.association.border_pass_groups);
   ak.read("border_reprojection_iou", o.association.border_reprojection_iou);
   ak.read("border_other_classes", o.association.border_other_classes);
   ak.read("border_side_cut_poses", o.association.border_side_cut_poses);

@@ -174,6 +174,11 @@ struct AssociationOptions {
   int border_min_measurements = 2;
   int border_min_placed_measurements = 1;
   double border_touch_px = 8;
+  // ... when border_min_measurements of its measurements lie in this many adjacent keyframe groups
+  // (0: anywhere): an object entering or leaving the view is seen in one pass, two false positives a
+  // minute apart are not such an object (our addition; a false cabinet of two boxes 58 keyframes
+  // apart; a door at the border detected in keyframes 1 and 3 has no track of two but one pass).
+  int border_pass_groups = 2;
   // Such a landmark whose boxes lie, in at least half of its keyframes, where a landmark of its class
   // reported on its own projects (this IoU or more) was measured on that object and is dropped (a
   // pole cut by the border, doubled: IoU 0.51-0.71; a chair beside another of its row: 0.17-0.44).
