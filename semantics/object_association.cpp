@@ -602,6 +602,14 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
       items.push_back(std::move(g));  // may be empty: the sampler handles empty groups
     }
   }
+  // Per measurement: the most measurements a group object (a track, or a segment of one) holding it
+  // has.
+  std::vector<int> track_length(ms.size(), 1);
+  const auto note_track = [&](const std::vector<int>& ids) {
+    for (int id : ids) track_length[id] = std::max(track_length[id], static_cast<int>(ids.size()));
+  };
+  for (const auto& o : objects) note_track(o.measurements);
+  for (const auto& ids : unplaced) note_track(ids);
   r.mot_seconds = seconds_since(t0);
   r.num_group_objects = static_cast<int>(objects.size());
   r.num_groups = static_cast<int>(items.size());
@@ -689,9 +697,11 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   const auto meets = [&](const std::vector<int>& ids, int min_count, int min_placed) {
     return static_cast<int>(ids.size()) >= min_count && placed_count(ids) >= std::max(1, min_placed);
   };
-  // Without the side-border minimums.
+  // Without the side-border minimums; a track holding enough of them (association.min_track_measurements).
   const auto meets_minimums = [&](const std::vector<int>& ids) {
-    return meets(ids, ao.min_measurements, ao.min_placed_measurements);
+    const auto tracked = [&](int id) { return track_length[id] >= ao.min_track_measurements; };
+    return meets(ids, ao.min_measurements, ao.min_placed_measurements) &&
+           (hdp_only || std::any_of(ids.begin(), ids.end(), tracked));
   };
   if (ao.bridge_unplaced_tracks && !hdp_only) {
     std::vector<bool> reportable(result.num_dishes);
@@ -727,14 +737,15 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
     // Seen mostly at the image's left or right border, in one pass: fewer measurements, fewer placed
     // for the thin classes (association.border_min_measurements, border_min_placed_measurements,
     // border_pass_groups).
-    int min_count = ao.min_measurements, min_placed = ao.min_placed_measurements;
-    if (views && !hdp_only && mostly_at_side_border(ids, ms, views->camera, ao.border_touch_px) &&
-        (ao.border_pass_groups == 0 ||
-         most_in_adjacent_groups(ids, r.group_of, ao.border_pass_groups) >= ao.border_min_measurements)) {
-      min_count = std::min(min_count, ao.border_min_measurements);
-      min_placed = std::min(min_placed, options.thin_classes.count(label) ? ao.border_min_placed_measurements : min_count);
-    }
-    return meets(ids, min_count, min_placed);
+    if (meets_minimums(ids)) return true;
+    if (!views || hdp_only || !mostly_at_side_border(ids, ms, views->camera, ao.border_touch_px) ||
+        (ao.border_pass_groups > 0 &&
+         most_in_adjacent_groups(ids, r.group_of, ao.border_pass_groups) < ao.border_min_measurements))
+      return false;
+    const int min_count = std::min(ao.min_measurements, ao.border_min_measurements);
+    return meets(ids, min_count,
+                 std::min(ao.min_placed_measurements,
+                          options.thin_classes.count(label) ? ao.border_min_placed_measurements : min_count));
   };
   for (int k = 0; k < result.num_dishes; ++k) {
     const std::string& label = dish_labels[k];

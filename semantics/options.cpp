@@ -59,6 +59,7 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(association.appearance_neutral, -1, 1, "association.appearance_neutral");
   c(association.min_measurements, 1, 10000, "association.min_measurements");
   c(association.min_placed_measurements, 1, 10000, "association.min_placed_measurements");
+  c(association.min_track_measurements, 1, 10000, "association.min_track_measurements");
   c(association.border_min_measurements, 1, 10000, "association.border_min_measurements");
   c(association.border_min_placed_measurements, 1, 10000, "association.border_min_placed_measurements");
   c(association.border_touch_px, 0, 1e4, "association.border_touch_px");
@@ -170,6 +171,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   ak.read("appearance_neutral", o.association.appearance_neutral);
   ak.read("min_measurements", o.association.min_measurements);
   ak.read("min_placed_measurements", o.association.min_placed_measurements);
+  ak.read("min_track_measurements", o.association.min_track_measurements);
   ak.read("border_min_measurements", o.association.border_min_measurements);
   ak.read("border_min_placed_measurements", o.association.border_min_placed_measurements);
   ak.read("border_touch_px", o.association.border_touch_px);

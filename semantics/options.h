@@ -162,7 +162,12 @@ struct AssociationOptions {
   double appearance_neutral = 0.6;    // cosine that neither favours nor penalises joining
   hdp::CrfOptions crf;                // alpha, gamma, sweeps, seed
   int min_measurements = 3;           // landmarks with fewer measurements are not reported,
-  int min_placed_measurements = 3;    // or with fewer measurements that have a pose
+  int min_placed_measurements = 3;    // or with fewer measurements that have a pose,
+  // or without a group object (an MOT track inside one group) holding this many of its measurements
+  // (1: off; hierarchical mode): a confirmed track, as FairMOT reports only those. Detections never
+  // tracked into a second keyframe are false positives or strays of a mapped object (our addition;
+  // side-border objects are judged by border_pass_groups instead).
+  int min_track_measurements = 2;
   // An object seen mostly at the image's left or right border (its box within border_touch_px of
   // it in at least half of its measurements) is entering or leaving the view: it is reported with
   // border_min_measurements measurements and, if a chair, pole or wheelchair (thin_classes, which

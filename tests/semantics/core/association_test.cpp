@@ -652,6 +652,58 @@ TEST(Association, ObjectSeenAtASideBorderNeedsFewerMeasurements) {
   test::expect_load_error_names("association: {border_touch_px: -2}", "association.border_touch_px");
 }
 
+// Three detections of a cabinet at one place, each alone in its keyframe's group (keyframes 2, 9
+// and 16): enough measurements, all placed, but no track holds two of them, so no landmark is
+// reported (association.min_track_measurements); with two of them in adjacent keyframes, tracked,
+// it is.
+TEST(Association, DetectionsNeverTrackedIntoASecondKeyframeAreNotALandmark) {
+  slam::PinholeCamera cam;
+  cam.fx = cam.fy = 525, cam.cx = 319.5, cam.cy = 239.5, cam.width = 640, cam.height = 480;
+  const int keyframes = 20;
+  const KeyframeViews views{cam, std::vector<slam::SE3>(keyframes)};
+  const auto measurements = [&](const std::set<int>& cabinet_keyframes) {
+    std::vector<ObjectMeasurement> ms;
+    const auto add = [&](int kf, const std::string& label, double x0, const Eigen::Vector3d& at, int instance) {
+      ObjectMeasurement m;
+      m.id = static_cast<int>(ms.size());
+      m.keyframe = kf;
+      m.timestamp = kf * 0.1;
+      m.label = label;
+      m.box = Eigen::Vector4d(x0, 120, x0 + 150, 300);
+      m.score = 0.7f;
+      m.embedding = Eigen::VectorXf::Unit(8, instance);
+      m.gt_instance = instance;
+      m.pose = ObjectPose{slam::SE3(Eigen::Quaterniond::Identity(), at), Eigen::Vector3d(0.45, 0.45, 0.8)};
+      ms.push_back(m);
+    };
+    for (int kf = 0; kf < keyframes; ++kf) {
+      add(kf, "door", 400, Eigen::Vector3d(0.5, 0.4, 3.0), 0);
+      if (cabinet_keyframes.count(kf)) add(kf, "cabinet", 100, Eigen::Vector3d(-1.2, 0.0, 3.0), 1);
+    }
+    return ms;
+  };
+  SemanticOptions o;
+  const auto groups = groups_of(keyframes, o.groups.size, o.groups.overlap);
+  const auto labels = [&](const std::vector<ObjectMeasurement>& ms, const SemanticOptions& opt) {
+    std::multiset<std::string> l;
+    for (const auto& lm : associate_objects(ms, groups, opt, &views).landmarks) l.insert(lm.label);
+    return l;
+  };
+  const auto lone = measurements({2, 9, 16});
+  EXPECT_EQ(labels(lone, o), (std::multiset<std::string>{"door"}));
+  SemanticOptions off = o;
+  off.association.min_track_measurements = 1;
+  ASSERT_EQ(labels(lone, off), (std::multiset<std::string>{"cabinet", "door"})) << "the three must make one landmark";
+  EXPECT_EQ(labels(measurements({2, 3, 16}), o), (std::multiset<std::string>{"cabinet", "door"}));
+  SemanticOptions hdp = o;
+  hdp.association.mode = "hdp-only";  // every keyframe its own group: not applied
+  EXPECT_EQ(labels(lone, hdp), (std::multiset<std::string>{"cabinet", "door"}));
+  EXPECT_EQ(load_semantic_options(YAML::Load("association: {min_track_measurements: 1}"), "s.yaml")
+                .association.min_track_measurements,
+            1);
+  test::expect_load_error_names("association: {min_track_measurements: 0}", "association.min_track_measurements");
+}
+
 // Two false positives of one class at one place, far apart in time (keyframes 2 and 17), one of
 // them at the left border: the side-border minimums would report them as an object entering the
 // view, but they do not lie in one pass, two adjacent keyframe groups
