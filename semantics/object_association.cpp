@@ -734,9 +734,9 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
     l.pose = poses[pick];
   };
   const auto reportable = [&](const std::vector<int>& ids, const std::string& label) {
-    // Seen mostly at the image's left or right border, in one pass: fewer measurements, fewer placed
-    // for the thin classes (association.border_min_measurements, border_min_placed_measurements,
-    // border_pass_groups).
+    // The general minimums; or, seen mostly at the image's left or right border in one pass, fewer
+    // measurements, fewer placed for the thin classes, and no track needed
+    // (association.border_min_measurements, border_min_placed_measurements, border_pass_groups).
     if (meets_minimums(ids)) return true;
     if (!views || hdp_only || !mostly_at_side_border(ids, ms, views->camera, ao.border_touch_px) ||
         (ao.border_pass_groups > 0 &&

@@ -652,52 +652,59 @@ TEST(Association, ObjectSeenAtASideBorderNeedsFewerMeasurements) {
   test::expect_load_error_names("association: {border_touch_px: -2}", "association.border_touch_px");
 }
 
+// Adds a detection of `label` in keyframe `kf` (box 150 x 180 px from column `x0`) placed at `at`
+// as a 0.45 x 0.45 x 0.8 m box, with an embedding of its own per true instance.
+void add_placed_box(std::vector<ObjectMeasurement>& ms, int kf, const std::string& label, double x0,
+                    const Eigen::Vector3d& at, int instance) {
+  ObjectMeasurement m;
+  m.id = static_cast<int>(ms.size());
+  m.keyframe = kf;
+  m.timestamp = kf * 0.1;
+  m.label = label;
+  m.box = Eigen::Vector4d(x0, 120, x0 + 150, 300);
+  m.score = 0.7f;
+  m.embedding = Eigen::VectorXf::Unit(8, instance);
+  m.gt_instance = instance;
+  m.pose = ObjectPose{slam::SE3(Eigen::Quaterniond::Identity(), at), Eigen::Vector3d(0.45, 0.45, 0.8)};
+  ms.push_back(m);
+}
+
+// Landmark labels of `ms` associated over `keyframes` still keyframes of the VGA camera.
+std::multiset<std::string> landmark_labels(const std::vector<ObjectMeasurement>& ms, int keyframes,
+                                           const SemanticOptions& o) {
+  const KeyframeViews views{test::vga_camera(525), std::vector<slam::SE3>(keyframes)};
+  std::multiset<std::string> l;
+  for (const auto& lm :
+       associate_objects(ms, groups_of(keyframes, o.groups.size, o.groups.overlap), o, &views).landmarks)
+    l.insert(lm.label);
+  return l;
+}
+
 // Three detections of a cabinet at one place, each alone in its keyframe's group (keyframes 2, 9
 // and 16): enough measurements, all placed, but no track holds two of them, so no landmark is
 // reported (association.min_track_measurements); with two of them in adjacent keyframes, tracked,
 // it is.
 TEST(Association, DetectionsNeverTrackedIntoASecondKeyframeAreNotALandmark) {
-  slam::PinholeCamera cam;
-  cam.fx = cam.fy = 525, cam.cx = 319.5, cam.cy = 239.5, cam.width = 640, cam.height = 480;
   const int keyframes = 20;
-  const KeyframeViews views{cam, std::vector<slam::SE3>(keyframes)};
   const auto measurements = [&](const std::set<int>& cabinet_keyframes) {
     std::vector<ObjectMeasurement> ms;
-    const auto add = [&](int kf, const std::string& label, double x0, const Eigen::Vector3d& at, int instance) {
-      ObjectMeasurement m;
-      m.id = static_cast<int>(ms.size());
-      m.keyframe = kf;
-      m.timestamp = kf * 0.1;
-      m.label = label;
-      m.box = Eigen::Vector4d(x0, 120, x0 + 150, 300);
-      m.score = 0.7f;
-      m.embedding = Eigen::VectorXf::Unit(8, instance);
-      m.gt_instance = instance;
-      m.pose = ObjectPose{slam::SE3(Eigen::Quaterniond::Identity(), at), Eigen::Vector3d(0.45, 0.45, 0.8)};
-      ms.push_back(m);
-    };
     for (int kf = 0; kf < keyframes; ++kf) {
-      add(kf, "door", 400, Eigen::Vector3d(0.5, 0.4, 3.0), 0);
-      if (cabinet_keyframes.count(kf)) add(kf, "cabinet", 100, Eigen::Vector3d(-1.2, 0.0, 3.0), 1);
+      add_placed_box(ms, kf, "door", 400, Eigen::Vector3d(0.5, 0.4, 3.0), 0);
+      if (cabinet_keyframes.count(kf)) add_placed_box(ms, kf, "cabinet", 100, Eigen::Vector3d(-1.2, 0.0, 3.0), 1);
     }
     return ms;
   };
-  SemanticOptions o;
-  const auto groups = groups_of(keyframes, o.groups.size, o.groups.overlap);
-  const auto labels = [&](const std::vector<ObjectMeasurement>& ms, const SemanticOptions& opt) {
-    std::multiset<std::string> l;
-    for (const auto& lm : associate_objects(ms, groups, opt, &views).landmarks) l.insert(lm.label);
-    return l;
-  };
+  const SemanticOptions o;
   const auto lone = measurements({2, 9, 16});
-  EXPECT_EQ(labels(lone, o), (std::multiset<std::string>{"door"}));
+  EXPECT_EQ(landmark_labels(lone, keyframes, o), (std::multiset<std::string>{"door"}));
   SemanticOptions off = o;
   off.association.min_track_measurements = 1;
-  ASSERT_EQ(labels(lone, off), (std::multiset<std::string>{"cabinet", "door"})) << "the three must make one landmark";
-  EXPECT_EQ(labels(measurements({2, 3, 16}), o), (std::multiset<std::string>{"cabinet", "door"}));
+  ASSERT_EQ(landmark_labels(lone, keyframes, off), (std::multiset<std::string>{"cabinet", "door"}))
+      << "the three must make one landmark";
+  EXPECT_EQ(landmark_labels(measurements({2, 3, 16}), keyframes, o), (std::multiset<std::string>{"cabinet", "door"}));
   SemanticOptions hdp = o;
   hdp.association.mode = "hdp-only";  // every keyframe its own group: not applied
-  EXPECT_EQ(labels(lone, hdp), (std::multiset<std::string>{"cabinet", "door"}));
+  EXPECT_EQ(landmark_labels(lone, keyframes, hdp), (std::multiset<std::string>{"cabinet", "door"}));
   EXPECT_EQ(load_semantic_options(YAML::Load("association: {min_track_measurements: 1}"), "s.yaml")
                 .association.min_track_measurements,
             1);
@@ -710,49 +717,26 @@ TEST(Association, DetectionsNeverTrackedIntoASecondKeyframeAreNotALandmark) {
 // (association.border_pass_groups), so they are not reported; the same cabinet at the border in
 // keyframes 2 and 3 still is.
 TEST(Association, DetectionsAtASideBorderInTwoPassesAreNotAnObjectEnteringTheView) {
-  slam::PinholeCamera cam;
-  cam.fx = cam.fy = 525, cam.cx = 319.5, cam.cy = 239.5, cam.width = 640, cam.height = 480;
   const int keyframes = 20;
-  const KeyframeViews views{cam, std::vector<slam::SE3>(keyframes)};
-  std::vector<ObjectMeasurement> ms;
-  const auto add = [&](int kf, const std::string& label, double x0, const Eigen::Vector3d& at, int instance) {
-    ObjectMeasurement m;
-    m.id = static_cast<int>(ms.size());
-    m.keyframe = kf;
-    m.timestamp = kf * 0.1;
-    m.label = label;
-    m.box = Eigen::Vector4d(x0, 120, x0 + 150, 300);
-    m.score = 0.7f;
-    m.embedding = Eigen::VectorXf::Unit(8, instance);
-    m.gt_instance = instance;
-    m.pose = ObjectPose{slam::SE3(Eigen::Quaterniond::Identity(), at), Eigen::Vector3d(0.45, 0.45, 0.8)};
-    ms.push_back(m);
+  const auto measurements = [&](int second_cabinet_keyframe, double second_cabinet_x0) {
+    std::vector<ObjectMeasurement> ms;
+    for (int kf = 0; kf < keyframes; ++kf) {
+      add_placed_box(ms, kf, "door", 300, Eigen::Vector3d(0.5, 0.4, 3.0), 0);
+      if (kf == 2) add_placed_box(ms, kf, "cabinet", 5, Eigen::Vector3d(-1.2, 0.0, 3.0), 1);
+      if (kf == second_cabinet_keyframe)
+        add_placed_box(ms, kf, "cabinet", second_cabinet_x0, Eigen::Vector3d(-1.1, 0.05, 3.0), 1);
+    }
+    return ms;
   };
-  for (int kf = 0; kf < keyframes; ++kf) {
-    add(kf, "door", 300, Eigen::Vector3d(0.5, 0.4, 3.0), 0);
-    if (kf == 2) add(kf, "cabinet", 5, Eigen::Vector3d(-1.2, 0.0, 3.0), 1);
-    if (kf == 17) add(kf, "cabinet", 200, Eigen::Vector3d(-1.1, 0.05, 3.0), 1);
-  }
-  SemanticOptions o;
-  const auto groups = groups_of(keyframes, o.groups.size, o.groups.overlap);
-  const auto labels = [&](const SemanticOptions& opt) {
-    std::multiset<std::string> l;
-    for (const auto& lm : associate_objects(ms, groups, opt, &views).landmarks) l.insert(lm.label);
-    return l;
-  };
-  EXPECT_EQ(labels(o), (std::multiset<std::string>{"door"}));
+  const SemanticOptions o;
+  const auto apart = measurements(17, 200);
+  EXPECT_EQ(landmark_labels(apart, keyframes, o), (std::multiset<std::string>{"door"}));
   SemanticOptions off = o;
   off.association.border_pass_groups = 0;
-  ASSERT_EQ(labels(off), (std::multiset<std::string>{"cabinet", "door"})) << "the two must make one landmark";
+  ASSERT_EQ(landmark_labels(apart, keyframes, off), (std::multiset<std::string>{"cabinet", "door"}))
+      << "the two must make one landmark";
   // One pass: the same cabinet at the border in keyframes 2 and 3.
-  auto late =
-      std::find_if(ms.begin(), ms.end(), [](const auto& m) { return m.keyframe == 17 && m.label == "cabinet"; });
-  late->keyframe = 3;
-  late->timestamp = 0.3;
-  late->box(0) = 5;
-  std::stable_sort(ms.begin(), ms.end(), [](const auto& a, const auto& b) { return a.keyframe < b.keyframe; });
-  for (size_t i = 0; i < ms.size(); ++i) ms[i].id = static_cast<int>(i);
-  EXPECT_EQ(labels(o), (std::multiset<std::string>{"cabinet", "door"}));
+  EXPECT_EQ(landmark_labels(measurements(3, 5), keyframes, o), (std::multiset<std::string>{"cabinet", "door"}));
   EXPECT_EQ(load_semantic_options(YAML::Load("association: {border_pass_groups: 3}"), "s.yaml")
                 .association.border_pass_groups,
             3);
