@@ -602,14 +602,6 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
       items.push_back(std::move(g));  // may be empty: the sampler handles empty groups
     }
   }
-  // Per measurement: the most measurements a group object (a track, or a segment of one) holding it
-  // has.
-  std::vector<int> track_length(ms.size(), 1);
-  const auto note_track = [&](const std::vector<int>& ids) {
-    for (int id : ids) track_length[id] = std::max(track_length[id], static_cast<int>(ids.size()));
-  };
-  for (const auto& o : objects) note_track(o.measurements);
-  for (const auto& ids : unplaced) note_track(ids);
   r.mot_seconds = seconds_since(t0);
   r.num_group_objects = static_cast<int>(objects.size());
   r.num_groups = static_cast<int>(items.size());
@@ -672,6 +664,11 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
           best_size[id] = static_cast<int>(objects[o].measurements.size());
           dish_of[id] = k;
         }
+  // Per measurement: the largest group object (a track, or a segment of one) holding it, placed or
+  // not (association.min_track_measurements).
+  std::vector<int> track_length = best_size;
+  for (const auto& ids : unplaced)
+    for (int id : ids) track_length[id] = std::max(track_length[id], static_cast<int>(ids.size()));
   const AssociationOptions& ao = options.association;
   // A landmark none of whose measurements is placed (one made of a track the sampler never saw) is
   // placed by its side-cut measurements (association.border_side_cut_poses).
@@ -699,7 +696,7 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
   };
   // Without the side-border minimums; a track holding enough of them (association.min_track_measurements).
   const auto meets_minimums = [&](const std::vector<int>& ids) {
-    const auto tracked = [&](int id) { return track_length[id] >= ao.min_track_measurements; };
+    const auto tracked = [&](int id) { return std::max(1, track_length[id]) >= ao.min_track_measurements; };
     return meets(ids, ao.min_measurements, ao.min_placed_measurements) &&
            (hdp_only || std::any_of(ids.begin(), ids.end(), tracked));
   };
