@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <optional>
@@ -248,17 +249,39 @@ int link_through_unplaced_tracks(
 
   std::vector<int> dish(dish_labels.size());
   for (size_t k = 0; k < dish.size(); ++k) dish[k] = static_cast<int>(k);
+  // Per root: the measurements of the dishes merged into it (sorted), so that a chain of merges
+  // never joins two dishes measured together.
+  std::map<int, std::vector<int>> merged_measurements;
+  const auto measurements_of = [&](int root) -> const std::vector<int>& {
+    const auto it = merged_measurements.find(root);
+    return it != merged_measurements.end() ? it->second : dish_measurements[static_cast<size_t>(root)];
+  };
   int merged = 0;
-  for (const auto& [t, dishes] : touched)
-    for (auto a = dishes.begin(); a != dishes.end(); ++a)
-      for (auto b = std::next(a); b != dishes.end(); ++b) {
-        const int ra = root_of(dish, *a), rb = root_of(dish, *b);
-        if (ra == rb || !reportable[*a] || !reportable[*b] ||
-            !never_together(dish_measurements[*a], dish_measurements[*b]))
-          continue;
+  for (const auto& [t, all_dishes] : touched) {
+    std::vector<int> dishes;
+    for (int k : all_dishes)
+      if (reportable[static_cast<size_t>(k)]) dishes.push_back(k);
+    // A track touching two landmarks measured in one keyframe switched between objects: it
+    // tells nothing about which of its landmarks are one.
+    bool mixed = false;
+    for (size_t a = 0; a < dishes.size() && !mixed; ++a)
+      for (size_t b = a + 1; b < dishes.size() && !mixed; ++b)
+        mixed = !never_together(dish_measurements[static_cast<size_t>(dishes[a])],
+                                dish_measurements[static_cast<size_t>(dishes[b])]);
+    if (mixed) continue;
+    for (size_t a = 0; a < dishes.size(); ++a)
+      for (size_t b = a + 1; b < dishes.size(); ++b) {
+        const int ra = root_of(dish, dishes[a]), rb = root_of(dish, dishes[b]);
+        if (ra == rb || !never_together(measurements_of(ra), measurements_of(rb))) continue;
+        std::vector<int> joined;
+        std::merge(measurements_of(ra).begin(), measurements_of(ra).end(), measurements_of(rb).begin(),
+                   measurements_of(rb).end(), std::back_inserter(joined));
+        merged_measurements.erase(std::max(ra, rb));
+        merged_measurements[std::min(ra, rb)] = std::move(joined);
         dish[std::max(ra, rb)] = std::min(ra, rb);
         ++merged;
       }
+  }
   for (auto& d : dish_of)
     if (d >= 0) d = root_of(dish, d);
   return merged;

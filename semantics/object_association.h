@@ -75,7 +75,10 @@ ObjectLandmark* place_apart(ObjectLandmark& a, ObjectLandmark& b, const std::vec
 // Unplaced group objects of one class sharing a detection (an overlapping keyframe) form one track;
 // the same-class dishes a track touches that are each `reportable` (a fragment below the reporting
 // minimums is no second object) are merged into the first when `never_together` holds for the
-// pair (their lists of measurement ids). `dish_of` is rewritten; returns the dishes merged away.
+// pair (their lists of measurement ids, with those of the dishes already merged into each). A
+// track touching two such dishes measured together switched between objects (far boxes without a
+// pose, tracked along a row of doors) and merges none. `dish_of` is rewritten; returns the dishes
+// merged away.
 int link_through_unplaced_tracks(const std::vector<std::vector<int>>& unplaced,
                                  const std::vector<std::string>& unplaced_labels,
                                  const std::vector<std::string>& dish_labels,

@@ -1015,6 +1015,41 @@ TEST(Association, UnplacedTrackBridgesTheLandmarksItTouches) {
   EXPECT_EQ(associate_objects(ms, groups, o).landmarks.size(), 2u);
 }
 
+// Three doors along a wall, landmarks 0-2 (measurements {0, 1}, {5, 6}, {9, 10}); doors 0 and 1
+// were detected in one keyframe (measurements 0 and 5), and so were doors 0 and 2 (0 and 9). Far
+// boxes without a pose, tracked along the row with ID switches, touch all three: such a track
+// bridges none of them. Two tracks that each touch two neighbours bridge the first pair only, as
+// the merged landmark then holds a measurement taken together with the third.
+TEST(Association, UnplacedTrackSwitchingBetweenObjectsBridgesNone) {
+  const std::vector<std::string> dish_labels = {"door", "door", "door"};
+  const std::vector<bool> all(3, true);
+  const std::vector<int> before = {0, 0, -1, -1, -1, 1, 1, -1, -1, 2, 2};
+  const std::vector<std::vector<int>> dms = {{0, 1}, {5, 6}, {9, 10}};
+  const auto holds = [](const std::vector<int>& ids, int id) { return std::count(ids.begin(), ids.end(), id) > 0; };
+  const auto apart_from = [&](std::vector<std::pair<int, int>> together) {
+    return [&holds, together](const std::vector<int>& a, const std::vector<int>& b) {
+      for (const auto& [x, y] : together)
+        if ((holds(a, x) && holds(b, y)) || (holds(a, y) && holds(b, x))) return false;
+      return true;
+    };
+  };
+  auto d = before;
+  const std::vector<std::vector<int>> along_the_row = {{1, 2, 3}, {3, 4, 5}, {5, 7, 8, 9}};
+  EXPECT_EQ(link_through_unplaced_tracks(along_the_row, {"door", "door", "door"}, dish_labels, dms, all,
+                                         apart_from({{0, 5}}), d),
+            0);
+  EXPECT_EQ(d, before);
+  // Tracks {1, 2, 3} + {3, 4, 5} (doors 0 and 1) and {6, 7, 8} + {8, 9} (doors 1 and 2).
+  const std::vector<std::vector<int>> two_tracks = {{1, 2, 3}, {3, 4, 5}, {6, 7, 8}, {8, 9}};
+  const std::vector<std::string> doors(4, "door");
+  d = before;
+  EXPECT_EQ(link_through_unplaced_tracks(two_tracks, doors, dish_labels, dms, all, apart_from({{0, 9}}), d), 1);
+  EXPECT_EQ(d, (std::vector<int>{0, 0, -1, -1, -1, 0, 0, -1, -1, 2, 2}));
+  d = before;
+  EXPECT_EQ(link_through_unplaced_tracks(two_tracks, doors, dish_labels, dms, all, apart_from({}), d), 2);
+  EXPECT_EQ(d, (std::vector<int>{0, 0, -1, -1, -1, 0, 0, -1, -1, 0, 0}));
+}
+
 // The image box of an axis-aligned 3-D box (centre, size) seen by a camera at the origin, world =
 // camera frame.
 Eigen::Vector4d image_box(const slam::PinholeCamera& cam, const Eigen::Vector3d& centre, const Eigen::Vector3d& size) {
