@@ -373,6 +373,10 @@ std::optional<ObjectPose> measure_pose(const cv::Mat& depth, const slam::Pinhole
   const int y1 = std::min(depth.rows - 1, static_cast<int>(std::ceil(box(3) - o.box_shrink * h)));
   const double area = static_cast<double>(x1 - x0 + 1) * (y1 - y0 + 1);
   const int stride = std::max(1, static_cast<int>(std::sqrt(area / o.target_samples)));
+  // A pole's shaft is a few pixels wide: every column is sampled, so that its share of the samples
+  // is its share of the box's width rather than how many of the strided columns happen to hit it.
+  const bool axis = options.axis_classes.count(label) > 0;
+  const int column_stride = axis ? 1 : stride;
   struct Sample {
     double z;           // depth
     Eigen::Vector3d p;  // world point
@@ -381,7 +385,7 @@ std::optional<ObjectPose> measure_pose(const cv::Mat& depth, const slam::Pinhole
   std::vector<Sample> samples;
   for (int y = y0; y <= y1; y += stride) {
     const float* row = depth.ptr<float>(y);
-    for (int x = x0; x <= x1; x += stride) {
+    for (int x = x0; x <= x1; x += column_stride) {
       const double z = row[x];
       if (!(z >= o.min_depth && z <= o.max_depth)) continue;
       const Eigen::Vector3d p = T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z);
@@ -412,7 +416,6 @@ std::optional<ObjectPose> measure_pose(const cv::Mat& depth, const slam::Pinhole
   }
   // An axis class (a pole) rises above the furniture in front of it (a bed's footboard, a chair):
   // its window starts at a point of the box's upper half, which shows its shaft.
-  const bool axis = options.axis_classes.count(label) > 0;
   const int mid_row = (y0 + y1) / 2;
   size_t begin = 0, end = 0;
   for (size_t i = 0, j = 0; i < samples.size(); ++i) {

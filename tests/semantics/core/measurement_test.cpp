@@ -279,6 +279,21 @@ TEST(Measurement, AxisClassIsPlacedOnItsShaftAboveWhatStandsInFront) {
   EXPECT_LT(front->pose.translation().z(), 4.7);
 }
 
+// A pole 3 m away with the wall 1.4 m behind it, its box as wide as its base and cut by the bottom
+// border (aisle_left_turn_slow_5's iv pole 15 in keyframe 101): the shaft is 7 px wide, 12 % of
+// the trimmed box's columns, but the box's samples were 4 px apart, one column of them in 14 fell on
+// the shaft (7 %, under measurement.thin_support), and the wall was taken. Every column of a pole's
+// box is sampled now.
+TEST(Measurement, PoleShaftNarrowerThanTheSampleSpacingIsFound) {
+  const SemanticOptions o;
+  cv::Mat d(480, 640, CV_32F, cv::Scalar(4.4f));
+  d(cv::Rect(430, 112, 7, 368)).setTo(3.05);
+  const auto p = measure_pose_from_depth(d, camera(), slam::SE3(), Eigen::Vector4d(407, 112, 499, 480),
+                                         Eigen::Vector3d(0, -1, 0), "iv_pole", o);
+  ASSERT_TRUE(p);
+  EXPECT_NEAR(p->pose.translation().z(), 3.05, 0.1);
+}
+
 // A door on a side wall (the plane x = 1 m), seen obliquely down the corridor: it spans z = 3-3.9 m.
 // Its width is the axis closer to the line of sight, yet it is its face normal that hides a depth,
 // and its ends are where the rays through the box's edges meet the face. So are its top and foot:
