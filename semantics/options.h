@@ -28,7 +28,8 @@ struct KeyframeSelectionOptions {
 // Object measurement from depth inside the detection box (Assoc. Eq. 1 "Pose").
 struct MeasurementOptions {
   double box_shrink = 0.2;        // fraction of the box trimmed on each side (background at the edges)
-  int target_samples = 600;       // depth pixels sampled in the trimmed box (stride adapts to its size)
+  int target_samples = 600;       // depth pixels sampled in the trimmed box (stride adapts to its size;
+                                  // an axis class's box in every column, its rows at the stride)
   double depth_band = 0.6;        // surface depth window (m) for classes without a typical size
   double cluster_support = 0.25;  // the fullest depth window must hold this share of the points
   int min_points = 20;            // fewer valid points: no pose
