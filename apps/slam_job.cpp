@@ -49,6 +49,30 @@ fs::path find_shipped(const fs::path& relative) {
   return {};
 }
 
+// With -v: where tracking was lost and found again, and why (the counts the tracker judged).
+void log_tracking_event(const slam::FrameResult& r, const std::string& status, const std::string& previous,
+                        int previous_submap, const slam::FrontOptions& options) {
+  if (!spdlog::should_log(spdlog::level::debug)) return;
+  const bool lost_now = status == "lost" && previous != "lost" && previous != "initialising" && !previous.empty();
+  if (lost_now && r.inliers > 0)  // a pose came from the last frame or the reference keyframe, the local map failed
+    spdlog::debug("frame {} ({:.3f} s): tracking lost in submap {}: {} local-map inliers, {} needed "
+                  "(tracking.min_local_map_inliers)",
+                  r.index, r.timestamp, r.submap, r.inliers, options.tracking.min_local_map_inliers);
+  else if (lost_now)
+    spdlog::debug("frame {} ({:.3f} s): tracking lost in submap {}: no pose from the last frame or the reference "
+                  "keyframe ({} matches)",
+                  r.index, r.timestamp, r.submap, r.matches);
+  else if (status == "relocalised")
+    spdlog::debug("frame {} ({:.3f} s): relocalised in submap {}, {} local-map inliers", r.index, r.timestamp,
+                  r.submap, r.inliers);
+  else if (status == "tracked" && (previous.empty() || previous == "initialising" || r.submap != previous_submap))
+    spdlog::debug("frame {} ({:.3f} s): submap {} initialised{}", r.index, r.timestamp, r.submap,
+                  r.backfilled.empty() ? "" : fmt::format(", {} earlier frames backfilled", r.backfilled.size()));
+  if (r.new_submap)
+    spdlog::debug("frame {} ({:.3f} s): not found again; submap {} starts with the next frame", r.index, r.timestamp,
+                  r.submap + 1);
+}
+
 }  // namespace
 
 fs::path find_vocabulary(const fs::path& given) {
@@ -147,10 +171,13 @@ double run_slam_job(const SlamJob& job) {
     }
     const slam::FrameResult r = front.process(frame);
     if (r.keyframe && objects_setup) objects_setup->cache->offer(frame.timestamp, frame.image);
+    const std::string previous = statuses.empty() ? std::string() : statuses.back();
+    const int previous_submap = submap_of.empty() ? -1 : submap_of.back();
     statuses.push_back(r.relocalised ? "relocalised"
                        : r.tracked ? "tracked"
                        : r.state == slam::TrackingState::kNotInitialised ? "initialising"
                                                                          : "lost");
+    log_tracking_event(r, statuses.back(), previous, previous_submap, options);
     submap_of.push_back(r.submap);
     stamps.push_back(r.timestamp);
     for (double b : r.backfilled)  // localised once the monocular map existed

@@ -6,6 +6,9 @@
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "tests/apps/cli_support.h"
 #include "tests/slam/io/fixtures.h"
@@ -352,6 +355,45 @@ TEST(CliPipeline, ThreadedRgbdRunIsAccurate) {
     EXPECT_GT(ate, 0);
     EXPECT_LT(ate, 0.02) << "ATE (SE(3)) " << ate << " m";
   }
+}
+
+// With -v the run says where tracking was lost, why, and where a new submap started, in agreement
+// with frames.csv: the dark segment of corridor_loss (from 1001.47 s) loses the RGB-D tracker.
+TEST(CliPipeline, VerboseRunSaysWhereTrackingWasLostAndWhy) {
+  const fs::path dir = scratch_dir();
+  ASSERT_EQ(wardmap_cli("-q synth --scenario corridor_loss --variant slow --frames 100 --out " + shq(dir / "seq")).code,
+            0);
+  const CliResult r = wardmap_cli("-v run " + shq(dir / "seq") + " --mode rgbd --deterministic --out " + shq(dir / "run"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::vector<std::pair<std::string, int>> rows;  // status, submap per frame
+  std::ifstream frames(dir / "run" / "frames.csv");
+  std::string line;
+  std::getline(frames, line);  // header
+  while (std::getline(frames, line)) {
+    const auto a = line.find(','), b = line.rfind(',');
+    rows.emplace_back(line.substr(a + 1, b - a - 1), std::stoi(line.substr(b + 1)));
+  }
+  ASSERT_EQ(rows.size(), 100u);
+  // The frame number of the first debug line that holds `what`, or -1.
+  const auto frame_of = [&](const std::string& what) {
+    const auto at = r.output.find(what);
+    if (at == std::string::npos) return -1;
+    const auto start = r.output.rfind("[debug] frame ", at);
+    return start == std::string::npos ? -1 : std::stoi(r.output.substr(start + 14));
+  };
+  EXPECT_EQ(frame_of("submap 0 initialised"), 0) << r.output;
+  const int lost = frame_of("tracking lost in submap 0: ");
+  ASSERT_GT(lost, 44) << r.output;  // the dark segment starts at frame 44
+  EXPECT_EQ(rows[static_cast<size_t>(lost)].first, "lost");
+  EXPECT_NE(rows[static_cast<size_t>(lost - 1)].first, "lost");
+  const int reset = frame_of("not found again; submap 1 starts with the next frame");
+  ASSERT_GT(reset, lost) << r.output;
+  EXPECT_EQ(rows[static_cast<size_t>(reset)].second, 0);
+  EXPECT_EQ(rows[static_cast<size_t>(reset + 1)].second, 1);
+  const int initialised = frame_of("submap 1 initialised");
+  ASSERT_GT(initialised, reset) << r.output;
+  EXPECT_EQ(rows[static_cast<size_t>(initialised)], (std::pair<std::string, int>{"tracked", 1}));
+  EXPECT_NE(rows[static_cast<size_t>(initialised - 1)].first, "tracked");
 }
 
 // --realtime feeds the frames at their timestamps (the run lasts at least the sequence's span) and
