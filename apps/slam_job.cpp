@@ -69,8 +69,7 @@ void log_tracking_event(const slam::FrameResult& r, const std::string& status, c
     spdlog::debug("frame {} ({:.3f} s): submap {} initialised{}", r.index, r.timestamp, r.submap,
                   r.backfilled.empty() ? "" : fmt::format(", {} earlier frames backfilled", r.backfilled.size()));
   if (r.new_submap)
-    spdlog::debug("frame {} ({:.3f} s): not found again; submap {} starts with the next frame", r.index, r.timestamp,
-                  r.submap + 1);
+    spdlog::debug("frame {} ({:.3f} s): submap {} starts with the next frame", r.index, r.timestamp, r.submap + 1);
 }
 
 }  // namespace
