@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
+#include <string_view>
 #include <thread>
 #include <utility>
 #include <nlohmann/json.hpp>
@@ -50,7 +51,7 @@ fs::path find_shipped(const fs::path& relative) {
 }
 
 // With -v: where tracking was lost and found again, and why (the counts the tracker judged).
-void log_tracking_event(const slam::FrameResult& r, const std::string& status, const std::string& previous,
+void log_tracking_event(const slam::FrameResult& r, std::string_view status, std::string_view previous,
                         int previous_submap, const slam::FrontOptions& options) {
   if (!spdlog::should_log(spdlog::level::debug)) return;
   const bool lost_now = status == "lost" && previous != "lost" && previous != "initialising" && !previous.empty();
@@ -170,13 +171,13 @@ double run_slam_job(const SlamJob& job) {
     }
     const slam::FrameResult r = front.process(frame);
     if (r.keyframe && objects_setup) objects_setup->cache->offer(frame.timestamp, frame.image);
-    const std::string previous = statuses.empty() ? std::string() : statuses.back();
-    const int previous_submap = submap_of.empty() ? -1 : submap_of.back();
-    statuses.push_back(r.relocalised ? "relocalised"
-                       : r.tracked ? "tracked"
-                       : r.state == slam::TrackingState::kNotInitialised ? "initialising"
-                                                                         : "lost");
-    log_tracking_event(r, statuses.back(), previous, previous_submap, options);
+    const char* status = r.relocalised ? "relocalised"
+                         : r.tracked ? "tracked"
+                         : r.state == slam::TrackingState::kNotInitialised ? "initialising"
+                                                                           : "lost";
+    log_tracking_event(r, status, statuses.empty() ? std::string_view() : std::string_view(statuses.back()),
+                       submap_of.empty() ? -1 : submap_of.back(), options);
+    statuses.push_back(status);
     submap_of.push_back(r.submap);
     stamps.push_back(r.timestamp);
     for (double b : r.backfilled)  // localised once the monocular map existed
