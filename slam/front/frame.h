@@ -28,11 +28,23 @@ struct FrameFeatures {
   FeatureGrid grid;
   const ScalePyramid* pyramid = nullptr;  // the extractor's (outlives every frame)
   double bf = 0;                          // virtual baseline x fx (pixels x metres)
+  // The last flow_age.size() keypoints were not detected but followed by flow (Tracker, tracking.flow_extend):
+  // frames each has been followed since its point was last matched to a detected keypoint.
+  std::vector<int> flow_age;
+  size_t detected() const { return keypoints.size() - flow_age.size(); }
 
   size_t size() const { return keypoints.size(); }
   const uchar* descriptor(size_t i) const { return descriptors.ptr<uchar>(static_cast<int>(i)); }
   bool has_depth(size_t i) const { return depth[i] > 0; }
 };
+
+// `image` as 8-bit grey (BGR, BGRA, grey of any depth).
+cv::Mat to_grey(const cv::Mat& image);
+
+// The depth (metres) at keypoint `pt` of pyramid scale `scale`; 0 when none, beyond `max_depth`, or
+// on a silhouette (a neighbour `scale` pixels away differs by more than `max_depth_step` x depth).
+float sample_keypoint_depth(const cv::Mat& depth, cv::Point2f pt, double scale, double max_depth,
+                            double max_depth_step);
 
 // Extracts ORB from `image` (grey or BGR) and samples `depth` (CV_32F metres, may be empty) at each
 // keypoint; depths beyond `max_depth`, and depths that differ by more than `max_depth_step` x depth
@@ -60,6 +72,12 @@ class Frame {
   std::vector<std::shared_ptr<MapPoint>> map_points;
   std::vector<char> outlier;
   std::shared_ptr<KeyFrame> reference_keyframe;
+  // tracking.flow_extend: the image pyramid (with gradients) of cv::buildOpticalFlowPyramid; else empty.
+  std::vector<cv::Mat> flow_pyramid;
+  cv::Mat depth;  // tracking.flow_extend, RGB-D: the frame's depth (CV_32F metres); else empty
+
+  // Features with more keypoints appended (the first size() unchanged); new slots unmatched.
+  void extend_features(std::shared_ptr<const FrameFeatures> features);
 
   int count_matches() const;
   // Drops the associations flagged as outliers (and clears the flags).

@@ -77,6 +77,25 @@ struct TrackingOptions {
   int reloc_min_matches = 15;           // tracking.reloc_min_matches: descriptor matches to try PnP
   double reloc_pnp_error = 4.0;         // tracking.reloc_pnp_error (px): RANSAC reprojection threshold
   int reloc_min_inliers = 50;           // tracking.reloc_min_inliers: after pose optimisation
+  // Off by default (docs/EXPERIMENTS.md, "Following points by optical flow"): the last frame's map
+  // points that the descriptor searches missed are followed into the frame by pyramidal Lucas-Kanade
+  // flow (forward-backward checked, gated by the point's projection) and observed there, so that
+  // points whose corner FAST does not find again or whose descriptor changed live longer.
+  bool flow_extend = false;             // tracking.flow_extend
+  double flow_max_fb_error = 0.5;       // tracking.flow_max_fb_error (px): forward-backward check
+  double flow_gate = 3.0;               // tracking.flow_gate (px): flow position against the projection
+  int flow_window = 21;                 // tracking.flow_window (px)
+  int flow_levels = 3;                  // tracking.flow_levels: pyramid levels above the image
+  // A detected keypoint this near the flow position (and one level apart at most) takes the point;
+  // if it is matched to another point already, the followed one is a duplicate and is dropped.
+  double flow_snap = 2.0;               // tracking.flow_snap (px); 0: always a new keypoint
+  int flow_max_age = 20;                // tracking.flow_max_age: frames followed without being matched
+  int flow_max_points = 100000;         // tracking.flow_max_points: followed per frame, most observed first
+  bool flow_depth = false;              // tracking.flow_depth: RGB-D: followed keypoints sample the depth
+  bool flow_reoptimise = true;          // tracking.flow_reoptimise: solve the pose again with them (else chi2 test)
+  // Whether the followed points count as tracked in the keyframe decision; not counting them keeps
+  // (monocular) or raises (RGB-D) the keyframe rate.
+  bool flow_counts_for_keyframes = false;  // tracking.flow_counts_for_keyframes
   double reloc_max_speed = 2.0;         // tracking.reloc_max_speed (m/s, RGB-D): farther is a look-alike
   double reloc_distance_margin = 0.5;   // tracking.reloc_distance_margin (m, RGB-D)
 };

@@ -1,5 +1,7 @@
 #include "slam/front/front_process.h"
 
+#include <opencv2/video/tracking.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <optional>
@@ -37,12 +39,18 @@ double FrontProcess::mapping_seconds_total() const {
 
 FrameResult FrontProcess::process(const io::Frame& in) {
   const auto start = std::chrono::steady_clock::now();
+  const cv::Mat grey = to_grey(in.image);
   Frame frame(
       next_frame_id_++, in.timestamp,
       make_frame_features(
-          in.image, options_.monocular ? cv::Mat() : in.depth,
+          grey, options_.monocular ? cv::Mat() : in.depth,
           options_.monocular && tracker_.state() == TrackingState::kNotInitialised ? init_extractor_ : extractor_,
           camera_, options_.tracking.virtual_baseline, options_.tracking.max_depth, options_.tracking.max_depth_step));
+  if (options_.tracking.flow_extend && !options_.monocular && in.depth.type() == CV_32F) frame.depth = in.depth;
+  if (options_.tracking.flow_extend)
+    cv::buildOpticalFlowPyramid(grey, frame.flow_pyramid,
+                                cv::Size(options_.tracking.flow_window, options_.tracking.flow_window),
+                                options_.tracking.flow_levels);
   const auto extracted = std::chrono::steady_clock::now();
   const bool threaded = mapper_.threaded();
   double wait_seconds = 0;  // reported apart from the frame's own time (FrameResult::wait_seconds)

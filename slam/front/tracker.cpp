@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
+#include <opencv2/video/tracking.hpp>
+#include <unordered_set>
 
 #include "slam/front/keyframe_policy.h"
 #include "slam/front/local_bundle_adjustment.h"
@@ -85,6 +87,10 @@ TrackingOutcome Tracker::track(Frame& frame) {
   if (ok) {
     frame.reference_keyframe = reference_;
     ok = track_local_map(frame, out.inliers);
+    if (ok && options_.tracking.flow_extend) {
+      const int gained = extend_by_flow(frame);
+      if (options_.tracking.flow_counts_for_keyframes) out.inliers += gained;
+    }
   }
   out.relocalised = out.relocalised && ok;
   state_ = ok ? TrackingState::kTracking : TrackingState::kLost;
@@ -351,6 +357,143 @@ bool Tracker::track_local_map(Frame& frame, int& inliers) {
     if (mp->num_observations() > 0) ++inliers;
   }
   return inliers >= options_.tracking.min_local_map_inliers;
+}
+
+int Tracker::extend_by_flow(Frame& frame) {
+  const TrackingOptions& t = options_.tracking;
+  if (!last_frame_ || last_frame_->flow_pyramid.empty() || frame.flow_pyramid.empty()) return 0;
+  std::unordered_set<const MapPoint*> matched;
+  for (size_t i = 0; i < frame.size(); ++i)
+    if (frame.map_points[i] && !frame.outlier[i]) matched.insert(frame.map_points[i].get());
+  const FrameFeatures& lf = last_frame_->features();
+  std::vector<cv::Point2f> from, to;
+  std::vector<size_t> source;
+  std::vector<Eigen::Vector2d> predicted;
+  for (size_t i = 0; i < last_frame_->size(); ++i) {
+    const auto& mp = last_frame_->map_points[i];
+    if (!mp || mp->bad() || last_frame_->outlier[i] || matched.count(mp.get())) continue;
+    if (i >= lf.detected() && lf.flow_age[i - lf.detected()] >= t.flow_max_age) continue;
+    const Eigen::Vector3d pc = frame.pose_cw() * mp->position();
+    if (pc.z() <= 0) continue;
+    const Eigen::Vector2d u = camera_.project(pc);
+    if (!camera_.in_image(u, 2)) continue;
+    const cv::Point2f p0 = lf.keypoints[i].pt;
+    // The guess: the last keypoint moved by its point's predicted motion (undistorted offsets).
+    const Eigen::Vector2d d = u - lf.points[i];
+    from.push_back(p0);
+    to.emplace_back(p0.x + static_cast<float>(d.x()), p0.y + static_cast<float>(d.y()));
+    source.push_back(i);
+    predicted.push_back(u);
+  }
+  if (from.empty()) return 0;
+  if (from.size() > static_cast<size_t>(t.flow_max_points)) {  // the most observed points first
+    std::vector<size_t> order(from.size());
+    for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+    const auto obs = [&](size_t k) { return last_frame_->map_points[source[k]]->num_observations(); };
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return obs(a) > obs(b); });
+    order.resize(static_cast<size_t>(t.flow_max_points));
+    std::sort(order.begin(), order.end());
+    for (size_t n = 0; n < order.size(); ++n) {
+      from[n] = from[order[n]];
+      to[n] = to[order[n]];
+      source[n] = source[order[n]];
+      predicted[n] = predicted[order[n]];
+    }
+    from.resize(order.size());
+    to.resize(order.size());
+    source.resize(order.size());
+    predicted.resize(order.size());
+  }
+  const cv::Size window(t.flow_window, t.flow_window);
+  const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
+  std::vector<uchar> ok1, ok2;
+  std::vector<float> err;
+  cv::calcOpticalFlowPyrLK(last_frame_->flow_pyramid, frame.flow_pyramid, from, to, ok1, err, window, t.flow_levels, stop,
+                           cv::OPTFLOW_USE_INITIAL_FLOW);
+  std::vector<cv::Point2f> back = from;
+  cv::calcOpticalFlowPyrLK(frame.flow_pyramid, last_frame_->flow_pyramid, to, back, ok2, err, window, t.flow_levels, stop,
+                           cv::OPTFLOW_USE_INITIAL_FLOW);
+  auto f = std::make_shared<FrameFeatures>(frame.features());
+  f->descriptors = f->descriptors.clone();  // shared with the frame's features until now
+  const size_t first = f->size();
+  // Each followed point lands on a slot: a detected keypoint within flow_snap pixels (unmatched:
+  // it takes the point; matched to another point: a duplicate, dropped) or a keypoint appended here.
+  std::vector<std::pair<size_t, std::shared_ptr<MapPoint>>> assigned;
+  std::vector<char> taken(first, 0);
+  std::vector<int> near;
+  size_t appended = 0;
+  for (size_t k = 0; k < from.size(); ++k) {
+    if (!ok1[k] || !ok2[k] || cv::norm(back[k] - from[k]) > t.flow_max_fb_error) continue;
+    const Eigen::Vector2d px(to[k].x, to[k].y);
+    if (!camera_.in_image(px, 2)) continue;
+    const Eigen::Vector2d und = camera_.has_distortion() ? camera_.undistort_point(px) : px;
+    if ((und - predicted[k]).norm() > t.flow_gate) continue;
+    const size_t i = source[k];
+    const std::shared_ptr<MapPoint>& mp = last_frame_->map_points[i];
+    if (t.flow_snap > 0) {
+      frame.features().grid.in_area(und.x(), und.y(), t.flow_snap, std::max(0, lf.levels[i] - 1), lf.levels[i] + 1,
+                                    near);
+      bool duplicate = false;
+      int best = -1;
+      double best_d = t.flow_snap * t.flow_snap;
+      for (int j : near) {
+        const auto uj = static_cast<size_t>(j);
+        const double dj = (frame.features().points[uj] - und).squaredNorm();
+        if (dj > t.flow_snap * t.flow_snap) continue;
+        if ((frame.map_points[uj] && !frame.outlier[uj]) || taken[uj]) {
+          duplicate = true;
+          break;
+        }
+        if (dj <= best_d) best_d = dj, best = j;
+      }
+      if (duplicate) continue;
+      if (best >= 0) {
+        taken[static_cast<size_t>(best)] = 1;
+        frame.outlier[static_cast<size_t>(best)] = 0;
+        assigned.emplace_back(static_cast<size_t>(best), mp);
+        continue;
+      }
+    }
+    cv::KeyPoint kp = lf.keypoints[i];
+    kp.pt = to[k];
+    f->keypoints.push_back(kp);
+    f->points.push_back(und);
+    f->levels.push_back(lf.levels[i]);
+    const float d = frame.depth.empty() || !t.flow_depth ? 0.f
+                                        : sample_keypoint_depth(frame.depth, to[k], f->pyramid->scale[static_cast<size_t>(kp.octave)],
+                                                                t.max_depth, t.max_depth_step);
+    f->depth.push_back(d);
+    f->right_u.push_back(d > 0 ? static_cast<float>(und.x() - f->bf / d) : -1.f);
+    f->descriptors.push_back(mp->descriptor().clone());
+    f->flow_age.push_back(i >= lf.detected() ? lf.flow_age[i - lf.detected()] + 1 : 1);
+    assigned.emplace_back(first + appended++, mp);
+  }
+  if (assigned.empty()) return 0;
+  if (appended > 0) {
+    f->grid = FeatureGrid(f->points, f->levels, camera_.width, camera_.height);
+    frame.extend_features(std::move(f));
+  }
+  for (const auto& [slot, mp] : assigned) frame.map_points[slot] = mp;
+  if (t.flow_reoptimise) {
+    optimise_frame_pose(frame);
+  } else {  // the pose stays; each followed point passes the pose solver's chi2 test at it
+    const FrameFeatures& ff = frame.features();
+    for (const auto& [slot, mp] : assigned) {
+      const PoseObservation o{mp->position(), ff.points[slot], ff.right_u[slot],
+                              ff.pyramid->inv_scale[static_cast<size_t>(ff.levels[slot])]};
+      const double th = o.right_u >= 0 ? t.chi2_stereo : t.chi2_mono;
+      frame.outlier[slot] = observation_chi2(frame.pose_cw(), o, camera_, ff.bf) <= th ? 0 : 1;
+    }
+  }
+  int gained = 0;
+  for (const auto& [slot, mp] : assigned) {
+    if (frame.outlier[slot]) continue;
+    mp->increase_visible();
+    mp->increase_found();
+    mp->set_last_seen(frame.timestamp());
+    if (mp->num_observations() > 0) ++gained;
+  }
+  return gained;
 }
 
 KeyFrameEvidence Tracker::evidence(const Frame& frame, int inliers) const {

@@ -74,6 +74,8 @@ TEST(FrontOptions, InvalidValuesNameTheKey) {
   expect_error("tracking:\n  match_th_high: 20\n", "tracking.match_th_high");
   expect_error("tracking:\n  pose_rounds: abc\n", "tracking.pose_rounds");
   expect_error("tracking:\n  pose_solver: gauss\n", "tracking.pose_solver");
+  expect_error("tracking:\n  flow_max_age: 0\n", "tracking.flow_max_age");
+  expect_error("tracking:\n  flow_extend: maybe\n", "tracking.flow_extend");
   expect_error("mapping:\n  redundant_ratio: 1.5\n", "mapping.redundant_ratio");
   expect_error("mapping:\n  inline_busy_seconds: -0.1\n", "mapping.inline_busy_seconds");
   expect_error("mapping:\n  min_parallax_deg_mono: 95\n", "mapping.min_parallax_deg_mono");

@@ -175,4 +175,63 @@ TEST(FrontProcess, TracksWithTheMapperOnItsOwnThread) {
   EXPECT_LE(ate.stats.rmse, 0.02) << "ATE RMSE " << ate.stats.rmse << " m";
 }
 
+// tracking.flow_extend: map points the descriptor searches miss are followed by optical flow, so the
+// keyframes hold keypoints that were never detected, observing map points. In monocular runs, whose
+// keyframe rate it keeps, the points gain observations; RGB-D runs stay accurate.
+TEST(FrontProcess, FlowFollowsThePointsTheDescriptorSearchesMiss) {
+  const fs::path bin = wardmap_binary();
+  if (!fs::exists(bin)) GTEST_SKIP() << "wardmap executable not built: " << bin;
+  const fs::path seq = test::scratch_dir() / "aisle_flow";
+  std::string log;
+  ASSERT_EQ(test::run_command(bin.string() + " synth --scenario aisle_straight --variant quick --seed 2 --frames 90 --out " +
+                                  seq.string(),
+                              &log),
+            0)
+      << log;
+  const io::Settings settings = io::load_settings(seq / "settings.yaml");
+  io::ReaderOptions ro;
+  ro.depth_factor = settings.camera.depth_map_factor;
+  auto reader = io::open_sequence(seq, ro);
+  struct Run {
+    double ate_se3 = 0;
+    double observations_per_point = 0;
+    size_t followed = 0;  // keypoints of the final keyframes that flow placed, observing a point
+  };
+  const auto run = [&](bool flow, bool mono) {
+    FrontOptions options = load_front_options(settings);
+    options.tracking.flow_extend = flow;
+    options.monocular = mono;
+    FrontProcess front(options, settings.camera.camera);
+    for (size_t i = 0; i < reader->size(); ++i) {
+      const FrameResult f = front.process(reader->read(i));
+      if (!mono) EXPECT_TRUE(f.tracked) << "frame " << i;
+    }
+    Run r;
+    const Trajectory est = front.trajectory();
+    const auto pairs = eval::associate(reader->ground_truth(), est, eval::AssociationOptions{});
+    EXPECT_EQ(pairs.size(), 90u);
+    r.ate_se3 = eval::compute_ate(reader->ground_truth(), est, pairs, eval::Alignment::SE3).stats.rmse;
+    size_t points = 0, observations = 0;
+    for (const auto& [id, mp] : front.submap().map_points())
+      if (!mp->bad()) ++points, observations += static_cast<size_t>(mp->num_observations());
+    r.observations_per_point = points ? static_cast<double>(observations) / static_cast<double>(points) : 0;
+    for (const auto& [id, kf] : front.submap().keyframes()) {
+      if (kf->bad()) continue;
+      for (size_t i = kf->features().detected(); i < kf->features().size(); ++i)
+        if (kf->map_points()[i] && !kf->map_points()[i]->bad()) ++r.followed;
+    }
+    return r;
+  };
+  const Run rgbd_off = run(false, false), rgbd_on = run(true, false);
+  EXPECT_EQ(rgbd_off.followed, 0u);
+  EXPECT_GT(rgbd_on.followed, 100u);
+  EXPECT_LE(rgbd_on.ate_se3, 0.02) << "ATE RMSE " << rgbd_on.ate_se3 << " m";
+  const Run mono_off = run(false, true), mono_on = run(true, true);
+  EXPECT_EQ(mono_off.followed, 0u);
+  EXPECT_GT(mono_on.followed, 100u);
+  EXPECT_GT(mono_on.observations_per_point, mono_off.observations_per_point);
+  RecordProperty("mono_observations_per_point_off", std::to_string(mono_off.observations_per_point));
+  RecordProperty("mono_observations_per_point_on", std::to_string(mono_on.observations_per_point));
+}
+
 }  // namespace wardmap::slam
