@@ -84,8 +84,8 @@ struct TrackingOptions {
   bool flow_extend = false;             // tracking.flow_extend
   double flow_max_fb_error = 0.5;       // tracking.flow_max_fb_error (px): forward-backward check
   double flow_gate = 3.0;               // tracking.flow_gate (px): flow position against the projection
-  int flow_window = 21;                 // tracking.flow_window (px)
-  int flow_levels = 3;                  // tracking.flow_levels: pyramid levels above the image
+  int flow_window = 15;                 // tracking.flow_window (px)
+  int flow_levels = 2;                  // tracking.flow_levels: pyramid levels above the image
   // A detected keypoint this near the flow position (and one level apart at most) takes the point;
   // if it is matched to another point already, the followed one is a duplicate and is dropped.
   double flow_snap = 2.0;               // tracking.flow_snap (px); 0: always a new keypoint
