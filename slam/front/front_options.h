@@ -77,7 +77,7 @@ struct TrackingOptions {
   int reloc_min_matches = 15;           // tracking.reloc_min_matches: descriptor matches to try PnP
   double reloc_pnp_error = 4.0;         // tracking.reloc_pnp_error (px): RANSAC reprojection threshold
   int reloc_min_inliers = 50;           // tracking.reloc_min_inliers: after pose optimisation
-  // Off by default (docs/EXPERIMENTS.md, "Following points by optical flow"): the last frame's map
+  // Off by default (docs/EXPERIMENTS.md, "Following map points by optical flow"): the last frame's map
   // points that the descriptor searches missed are followed into the frame by pyramidal Lucas-Kanade
   // flow (forward-backward checked, gated by the point's projection) and observed there, so that
   // points whose corner FAST does not find again or whose descriptor changed live longer.

@@ -371,7 +371,7 @@ int Tracker::extend_by_flow(Frame& frame) {
   std::vector<Eigen::Vector2d> predicted;
   for (size_t i = 0; i < last_frame_->size(); ++i) {
     const auto& mp = last_frame_->map_points[i];
-    if (!mp || mp->bad() || last_frame_->outlier[i] || matched.count(mp.get())) continue;
+    if (!mp || mp->bad() || mp->descriptor().empty() || last_frame_->outlier[i] || matched.count(mp.get())) continue;
     if (i >= lf.detected() && lf.flow_age[i - lf.detected()] >= t.flow_max_age) continue;
     const Eigen::Vector3d pc = frame.pose_cw() * mp->position();
     if (pc.z() <= 0) continue;

@@ -204,7 +204,9 @@ TEST(FrontProcess, FlowFollowsThePointsTheDescriptorSearchesMiss) {
     FrontProcess front(options, settings.camera.camera);
     for (size_t i = 0; i < reader->size(); ++i) {
       const FrameResult f = front.process(reader->read(i));
-      if (!mono) EXPECT_TRUE(f.tracked) << "frame " << i;
+      if (!mono) {
+        EXPECT_TRUE(f.tracked) << "frame " << i;
+      }
     }
     Run r;
     const Trajectory est = front.trajectory();
@@ -212,8 +214,11 @@ TEST(FrontProcess, FlowFollowsThePointsTheDescriptorSearchesMiss) {
     EXPECT_EQ(pairs.size(), 90u);
     r.ate_se3 = eval::compute_ate(reader->ground_truth(), est, pairs, eval::Alignment::SE3).stats.rmse;
     size_t points = 0, observations = 0;
-    for (const auto& [id, mp] : front.submap().map_points())
-      if (!mp->bad()) ++points, observations += static_cast<size_t>(mp->num_observations());
+    for (const auto& [id, mp] : front.submap().map_points()) {
+      if (mp->bad()) continue;
+      ++points;
+      observations += static_cast<size_t>(mp->num_observations());
+    }
     r.observations_per_point = points ? static_cast<double>(observations) / static_cast<double>(points) : 0;
     for (const auto& [id, kf] : front.submap().keyframes()) {
       if (kf->bad()) continue;
