@@ -74,7 +74,7 @@ class Frame {
   std::shared_ptr<KeyFrame> reference_keyframe;
   // tracking.flow_extend: the image pyramid (with gradients) of cv::buildOpticalFlowPyramid; else empty.
   std::vector<cv::Mat> flow_pyramid;
-  cv::Mat depth;  // tracking.flow_extend, RGB-D: the frame's depth (CV_32F metres); else empty
+  cv::Mat depth;  // tracking.flow_extend and flow_depth, RGB-D: the frame's depth (CV_32F metres); else empty
 
   // Features with more keypoints appended (the first size() unchanged); new slots unmatched.
   void extend_features(std::shared_ptr<const FrameFeatures> features);

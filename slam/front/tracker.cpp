@@ -413,9 +413,8 @@ int Tracker::extend_by_flow(Frame& frame) {
   std::vector<cv::Point2f> back = from;
   cv::calcOpticalFlowPyrLK(frame.flow_pyramid, last_frame_->flow_pyramid, to, back, ok2, err, window, t.flow_levels, stop,
                            cv::OPTFLOW_USE_INITIAL_FLOW);
-  auto f = std::make_shared<FrameFeatures>(frame.features());
-  f->descriptors = f->descriptors.clone();  // shared with the frame's features until now
-  const size_t first = f->size();
+  std::shared_ptr<FrameFeatures> f;  // the frame's features, copied when the first keypoint is appended
+  const size_t first = frame.size();
   // Each followed point lands on a slot: a detected keypoint within flow_snap pixels (unmatched:
   // it takes the point; matched to another point: a duplicate, dropped) or a keypoint appended here.
   std::vector<std::pair<size_t, std::shared_ptr<MapPoint>>> assigned;
@@ -454,6 +453,10 @@ int Tracker::extend_by_flow(Frame& frame) {
         continue;
       }
     }
+    if (!f) {
+      f = std::make_shared<FrameFeatures>(frame.features());
+      f->descriptors = f->descriptors.clone();  // shared with the frame's features until now
+    }
     cv::KeyPoint kp = lf.keypoints[i];
     kp.pt = to[k];
     f->keypoints.push_back(kp);
@@ -469,7 +472,7 @@ int Tracker::extend_by_flow(Frame& frame) {
     assigned.emplace_back(first + appended++, mp);
   }
   if (assigned.empty()) return 0;
-  if (appended > 0) {
+  if (f) {
     f->grid = FeatureGrid(f->points, f->levels, camera_.width, camera_.height);
     frame.extend_features(std::move(f));
   }
