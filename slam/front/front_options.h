@@ -91,7 +91,7 @@ struct TrackingOptions {
   double flow_snap = 2.0;               // tracking.flow_snap (px); 0: always a new keypoint
   int flow_max_age = 20;                // tracking.flow_max_age: frames followed without being matched
   // Followed per frame, the most observed first: 150 keeps most of the synthetic gain of following
-  // all at a third of the flow's cost (docs/EXPERIMENTS.md).
+  // all, at a third of the flow's time on 7-Scenes RGB-D (docs/EXPERIMENTS.md).
   int flow_max_points = 150;            // tracking.flow_max_points
   bool flow_depth = false;              // tracking.flow_depth: RGB-D: followed keypoints sample the depth
   bool flow_reoptimise = true;          // tracking.flow_reoptimise: solve the pose again with them (else chi2 test)
