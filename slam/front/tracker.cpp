@@ -389,8 +389,9 @@ int Tracker::extend_by_flow(Frame& frame) {
   if (from.size() > static_cast<size_t>(t.flow_max_points)) {  // the most observed points first
     std::vector<size_t> order(from.size());
     for (size_t k = 0; k < order.size(); ++k) order[k] = k;
-    const auto obs = [&](size_t k) { return last_frame_->map_points[source[k]]->num_observations(); };
-    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return obs(a) > obs(b); });
+    std::vector<int> obs(from.size());
+    for (size_t k = 0; k < obs.size(); ++k) obs[k] = last_frame_->map_points[source[k]]->num_observations();
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return obs[a] > obs[b]; });
     order.resize(static_cast<size_t>(t.flow_max_points));
     std::sort(order.begin(), order.end());
     for (size_t n = 0; n < order.size(); ++n) {
