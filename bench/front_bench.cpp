@@ -59,7 +59,8 @@ BENCHMARK(BM_OrbExtract640x480)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 // per-frame tracking time (extraction + tracking, median / p95 / max), the ratio of the median to
 // the issue's target, keyframe rate, local BA time per keyframe, the largest keyframe queue seen
 // and the process's peak resident memory (frames are read as they go, so it is the SLAM's).
-// The benchmark's argument picks tracking.pose_solver: 0 = ceres (the default), 1 = lm.
+// The benchmark's first argument picks tracking.pose_solver: 0 = ceres (the default), 1 = lm; the
+// second sets tracking.flow_extend (0 = off, the default; 1 = on, with the settings' flow options).
 void run_front(benchmark::State& state, const char* sequence, const char* settings_name, bool mono, size_t max_frames,
                double target_ms) {
   const auto root = data_dir() / sequence;
@@ -69,6 +70,7 @@ void run_front(benchmark::State& state, const char* sequence, const char* settin
   options.monocular = mono;
   options.mapping_thread = true;
   options.tracking.pose_solver = state.range(0) == 1 ? "lm" : "ceres";
+  options.tracking.flow_extend = state.range(1) == 1;
   slam::io::ReaderOptions ro;
   ro.depth_factor = settings.camera.depth_map_factor;
   auto reader = slam::io::open_sequence(root, ro);
@@ -119,9 +121,9 @@ void BM_FrontKitchenMono(benchmark::State& state) { run_front(state, kKitchen, "
 void BM_FrontKittiMono(benchmark::State& state) {
   run_front(state, "kitti-odometry-03", "KITTI03.yaml", true, 400, 15.0);
 }
-BENCHMARK(BM_FrontKitchenRgbd)->ArgName("lm")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK(BM_FrontKitchenMono)->ArgName("lm")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK(BM_FrontKittiMono)->ArgName("lm")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_FrontKitchenRgbd)->ArgNames({"lm", "flow"})->Args({0, 0})->Args({1, 0})->Args({0, 1})->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_FrontKitchenMono)->ArgNames({"lm", "flow"})->Args({0, 0})->Args({1, 0})->Args({0, 1})->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_FrontKittiMono)->ArgNames({"lm", "flow"})->Args({0, 0})->Args({1, 0})->Args({0, 1})->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
 }  // namespace wardmap::bench
