@@ -28,7 +28,7 @@ struct FrameFeatures {
   FeatureGrid grid;
   const ScalePyramid* pyramid = nullptr;  // the extractor's (outlives every frame)
   double bf = 0;                          // virtual baseline x fx (pixels x metres)
-  // The last flow_age.size() keypoints were not detected but followed by flow (Tracker, tracking.flow_extend):
+  // The last flow_age.size() keypoints were not detected but followed by flow (Tracker, tracking.flow_extend / _mono):
   // frames each has been followed since its point was last matched to a detected keypoint.
   std::vector<int> flow_age;
   size_t detected() const { return keypoints.size() - flow_age.size(); }
@@ -72,7 +72,7 @@ class Frame {
   std::vector<std::shared_ptr<MapPoint>> map_points;
   std::vector<char> outlier;
   std::shared_ptr<KeyFrame> reference_keyframe;
-  // tracking.flow_extend: the image pyramid (with gradients) of cv::buildOpticalFlowPyramid; else empty.
+  // tracking.flow_extend / _mono: the image pyramid (with gradients) of cv::buildOpticalFlowPyramid; else empty.
   std::vector<cv::Mat> flow_pyramid;
   cv::Mat depth;  // tracking.flow_extend and flow_depth, RGB-D: the frame's depth (CV_32F metres); else empty
 

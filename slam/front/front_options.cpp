@@ -164,6 +164,7 @@ FrontOptions load_front_options(const io::Settings& settings) {
   tk.read("reloc_pnp_error", k.reloc_pnp_error);
   tk.read("reloc_min_inliers", k.reloc_min_inliers);
   tk.read("flow_extend", k.flow_extend);
+  tk.read("flow_extend_mono", k.flow_extend_mono);
   tk.read("flow_max_fb_error", k.flow_max_fb_error);
   tk.read("flow_gate", k.flow_gate);
   tk.read("flow_window", k.flow_window);

@@ -46,9 +46,9 @@ FrameResult FrontProcess::process(const io::Frame& in) {
           grey, options_.monocular ? cv::Mat() : in.depth,
           options_.monocular && tracker_.state() == TrackingState::kNotInitialised ? init_extractor_ : extractor_,
           camera_, options_.tracking.virtual_baseline, options_.tracking.max_depth, options_.tracking.max_depth_step));
-  if (options_.tracking.flow_extend && options_.tracking.flow_depth && !options_.monocular && in.depth.type() == CV_32F)
-    frame.depth = in.depth;
-  if (options_.tracking.flow_extend)
+  const bool flow = options_.tracking.flow(options_.monocular);
+  if (flow && options_.tracking.flow_depth && !options_.monocular && in.depth.type() == CV_32F) frame.depth = in.depth;
+  if (flow)
     cv::buildOpticalFlowPyramid(grey, frame.flow_pyramid,
                                 cv::Size(options_.tracking.flow_window, options_.tracking.flow_window),
                                 options_.tracking.flow_levels);

@@ -87,7 +87,7 @@ TrackingOutcome Tracker::track(Frame& frame) {
   if (ok) {
     frame.reference_keyframe = reference_;
     ok = track_local_map(frame, out.inliers);
-    if (ok && options_.tracking.flow_extend) {
+    if (ok && options_.tracking.flow(options_.monocular)) {
       const int gained = extend_by_flow(frame);
       if (options_.tracking.flow_counts_for_keyframes) out.inliers += gained;
     }

@@ -70,7 +70,7 @@ class Tracker {
   bool track_with_motion_model(Frame& frame);
   bool track_reference_keyframe(Frame& frame);
   bool track_local_map(Frame& frame, int& inliers);
-  // tracking.flow_extend: follows the last frame's map points that the frame did not match by
+  // tracking.flow_extend (_mono): follows the last frame's map points that the frame did not match by
   // Lucas-Kanade flow, appends them as keypoints observing those points, re-optimises the pose.
   // Returns the inliers gained.
   int extend_by_flow(Frame& frame);

@@ -48,6 +48,17 @@ TEST(FrontOptions, TrackingAndMappingSectionsOverrideDefaults) {
   EXPECT_EQ(FrontOptions{}.tracking.pose_solver, "ceres");
 }
 
+// The optical flow runs by default in RGB-D only; each mode has its own key.
+TEST(FrontOptions, FlowIsOnInRgbdAndOffInMonocularByDefault) {
+  const FrontOptions d = load_front_options(io::parse_settings(kBase, "t.yaml"));
+  EXPECT_TRUE(d.tracking.flow(false));
+  EXPECT_FALSE(d.tracking.flow(true));
+  const FrontOptions o = load_front_options(
+      io::parse_settings(std::string(kBase) + "tracking:\n  flow_extend: false\n  flow_extend_mono: true\n", "t.yaml"));
+  EXPECT_FALSE(o.tracking.flow(false));
+  EXPECT_TRUE(o.tracking.flow(true));
+}
+
 TEST(FrontOptions, OrbSlamStereoKeysSetTheVirtualBaselineAndCloseDepth) {
   const std::string text = std::string(kBase) + "Stereo.b: 0.07\nStereo.ThDepth: 40.0\n";
   const FrontOptions o = load_front_options(io::parse_settings(text, "t.yaml"));
@@ -76,6 +87,7 @@ TEST(FrontOptions, InvalidValuesNameTheKey) {
   expect_error("tracking:\n  pose_solver: gauss\n", "tracking.pose_solver");
   expect_error("tracking:\n  flow_max_age: 0\n", "tracking.flow_max_age");
   expect_error("tracking:\n  flow_extend: maybe\n", "tracking.flow_extend");
+  expect_error("tracking:\n  flow_extend_mono: 2\n", "tracking.flow_extend_mono");
   expect_error("mapping:\n  redundant_ratio: 1.5\n", "mapping.redundant_ratio");
   expect_error("mapping:\n  inline_busy_seconds: -0.1\n", "mapping.inline_busy_seconds");
   expect_error("mapping:\n  min_parallax_deg_mono: 95\n", "mapping.min_parallax_deg_mono");

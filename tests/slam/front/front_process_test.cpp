@@ -199,7 +199,7 @@ TEST(FrontProcess, FlowFollowsThePointsTheDescriptorSearchesMiss) {
   };
   const auto run = [&](bool flow, bool mono) {
     FrontOptions options = load_front_options(settings);
-    options.tracking.flow_extend = flow;
+    options.tracking.flow_extend = options.tracking.flow_extend_mono = flow;
     options.monocular = mono;
     FrontProcess front(options, settings.camera.camera);
     for (size_t i = 0; i < reader->size(); ++i) {
