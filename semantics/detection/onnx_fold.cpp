@@ -23,7 +23,9 @@ constexpr std::uint32_t kTypeTensorType = 1, kTensorTypeElemType = 1, kTensorTyp
                         kDimValue = 1;
 constexpr std::uint32_t kTensorDataType = 2, kTensorInt32Data = 5, kTensorInt64Data = 7, kTensorName = 8,
                         kTensorRawData = 9;
-constexpr std::uint32_t kAttributeName = 1, kAttributeInt = 3, kAttributeTensor = 5;
+constexpr std::uint32_t kAttributeName = 1, kAttributeInt = 3, kAttributeString = 4, kAttributeTensor = 5,
+                        kAttributeInts = 8, kAttributeType = 20;
+constexpr std::uint64_t kAttributeTypeInts = 7;
 constexpr std::int64_t kOnnxInt32 = 6, kOnnxInt64 = 7;
 
 std::string first_string(const std::vector<wire::Field>& fields, std::uint32_t number) {
@@ -337,6 +339,96 @@ std::optional<std::string> fuse_silu(const std::string& onnx) {
     if (is_value_info_of(parsed->graph[i], dropped_tensors)) continue;
     const auto fused = replaced.find(i);
     rewritten.push_back(fused == replaced.end() ? std::move(parsed->graph[i]) : wire::bytes_field(kGraphNode, fused->second));
+  }
+  return parsed->serialize_with(rewritten);
+}
+
+namespace {
+
+// A MaxPool of one input and one output with a square odd kernel, stride 1 and "same" padding (the
+// defaults of the attributes it leaves out: no dilation, floor rounding, explicit padding): its
+// kernel side, else 0.
+std::int64_t same_size_max_pool_kernel(const Node& n) {
+  if (n.op != "MaxPool" || n.inputs.size() != 1 || n.outputs.size() != 1) return 0;
+  std::int64_t k = 0;
+  bool padded = false;
+  for (const auto& a : n.attributes) {
+    const std::string name = first_string(a, kAttributeName);
+    const std::vector<std::int64_t> ints = wire::varints(a, kAttributeInts);
+    const std::vector<std::int64_t> value = wire::varints(a, kAttributeInt);
+    const auto all_equal = [&ints](std::int64_t v) {
+      for (std::int64_t x : ints)
+        if (x != v) return false;
+      return true;
+    };
+    if (name == "kernel_shape") {
+      if (ints.size() != 2 || ints[0] != ints[1] || ints[0] < 3 || ints[0] % 2 == 0) return 0;
+      k = ints[0];
+    } else if (name == "strides" || name == "dilations") {
+      if (!all_equal(1)) return 0;
+    } else if (name == "pads") {
+      if (ints.size() != 4) return 0;
+      padded = true;
+    } else if (name == "ceil_mode" || name == "storage_order") {
+      if (value.size() != 1 || value[0] != 0) return 0;
+    } else if (name == "auto_pad") {
+      if (first_string(a, kAttributeString) != "NOTSET") return 0;
+    } else {
+      return 0;
+    }
+  }
+  if (k == 0 || !padded) return 0;
+  const auto* pads = n.attribute("pads");
+  for (std::int64_t p : wire::varints(*pads, kAttributeInts))
+    if (p != k / 2) return 0;
+  return k;
+}
+
+std::string ints_attribute(const std::string& name, const std::vector<std::int64_t>& values) {
+  std::vector<wire::Field> f = {wire::bytes_field(kAttributeName, name)};
+  for (std::int64_t v : values) f.push_back(wire::varint_field(kAttributeInts, static_cast<std::uint64_t>(v)));
+  f.push_back(wire::varint_field(kAttributeType, kAttributeTypeInts));
+  return wire::serialize(f);
+}
+
+}  // namespace
+
+std::optional<std::string> cascade_max_pools(const std::string& onnx) {
+  std::optional<ParsedGraph> parsed = parse_graph(onnx);
+  if (!parsed) return std::nullopt;
+  const std::vector<Node>& nodes = parsed->nodes;
+  // The qualifying pools of each tensor, in graph order.
+  std::map<std::string, std::vector<size_t>> pools;
+  for (size_t k = 0; k < nodes.size(); ++k)
+    if (same_size_max_pool_kernel(nodes[k]) > 0) pools[nodes[k].inputs[0]].push_back(k);
+  std::map<size_t, std::string> replaced;  // graph field -> the rewritten node
+  for (const auto& [tensor, set] : pools) {
+    if (set.size() < 2) continue;
+    // Kernels growing in graph order, so that each pool's new input is made before it.
+    bool growing = true;
+    for (size_t j = 1; j < set.size(); ++j)
+      growing = growing && same_size_max_pool_kernel(nodes[set[j]]) > same_size_max_pool_kernel(nodes[set[j - 1]]);
+    if (!growing) continue;
+    for (size_t j = 1; j < set.size(); ++j) {
+      const Node& n = nodes[set[j]];
+      const std::int64_t k = same_size_max_pool_kernel(n) - same_size_max_pool_kernel(nodes[set[j - 1]]) + 1;
+      std::vector<wire::Field> f = {wire::bytes_field(kNodeInput, nodes[set[j - 1]].outputs[0]),
+                                    wire::bytes_field(kNodeOutput, n.outputs[0])};
+      const std::vector<wire::Field> original = wire::parse(parsed->graph[n.field].bytes);
+      const std::string name = first_string(original, kNodeName);
+      if (!name.empty()) f.push_back(wire::bytes_field(kNodeName, name));
+      f.push_back(wire::bytes_field(kNodeOpType, "MaxPool"));
+      f.push_back(wire::bytes_field(kNodeAttribute, ints_attribute("kernel_shape", {k, k})));
+      f.push_back(wire::bytes_field(kNodeAttribute, ints_attribute("pads", {k / 2, k / 2, k / 2, k / 2})));
+      f.push_back(wire::bytes_field(kNodeAttribute, ints_attribute("strides", {1, 1})));
+      replaced[n.field] = wire::serialize(f);
+    }
+  }
+  if (replaced.empty()) return std::nullopt;
+  std::vector<wire::Field> rewritten;
+  for (size_t i = 0; i < parsed->graph.size(); ++i) {
+    const auto it = replaced.find(i);
+    rewritten.push_back(it == replaced.end() ? std::move(parsed->graph[i]) : wire::bytes_field(kGraphNode, it->second));
   }
   return parsed->serialize_with(rewritten);
 }

@@ -46,4 +46,13 @@ std::optional<FoldedModel> fold_space_to_depth_input(const std::string& onnx);
 // message.
 std::optional<std::string> fuse_silu(const std::string& onnx);
 
+// `onnx`: the bytes of an ONNX ModelProto. Max pools of one tensor side by side, each k x k with
+// stride 1 and "same" padding (YOLOX's SPP: kernels 5, 9 and 13), become a chain: each pool after
+// the smallest reads the one before it, with the kernel that makes up the difference (a 5 x 5
+// maximum of a 5 x 5 maximum is the 9 x 9 maximum: YOLOv5's SPPF). A maximum is exact and cv::dnn's
+// pools leave the padding out, so the output is bit for bit the same, for about a third of the
+// comparisons. Returns nullopt when the model has no such set. Throws std::runtime_error when the
+// bytes are not a protobuf message.
+std::optional<std::string> cascade_max_pools(const std::string& onnx);
+
 }  // namespace wardmap::semantics

@@ -50,22 +50,24 @@ cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string&
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in && !in.eof()) throw InputError(file.string(), "cannot read the ONNX model");
   std::optional<FoldedModel> folded_input;
-  std::optional<std::string> fused;
+  std::optional<std::string> fused, cascaded;
   try {
     folded_input = fold_space_to_depth_input(bytes);
-    fused = fuse_silu(folded_input ? folded_input->onnx : bytes);
+    const std::string& unfolded = folded_input ? folded_input->onnx : bytes;
+    fused = fuse_silu(unfolded);
+    cascaded = cascade_max_pools(fused ? *fused : unfolded);
   } catch (const std::runtime_error& ex) {
     throw InputError(file.string(), std::string("not an ONNX model: ") + ex.what());
   }
-  if (!folded_input && !fused) return net_from_bytes(bytes, file);
-  const std::string& rewritten = fused ? *fused : folded_input->onnx;
+  if (!folded_input && !fused && !cascaded) return net_from_bytes(bytes, file);
+  const std::string& rewritten = cascaded ? *cascaded : fused ? *fused : folded_input->onnx;
   try {
     if (fused) register_silu_layer();
     cv::dnn::Net net = on_cpu(cv::dnn::readNetFromONNX(rewritten.data(), rewritten.size()), file);
     if (folded_input) folded = std::move(folded_input->input);
     return net;
   } catch (const cv::Exception& ex) {  // our rewrite's fault, not the user's: use the model as it is
-    spdlog::warn("{}: the model with its input stage folded or its SiLUs fused does not load ({}); using it unchanged",
+    spdlog::warn("{}: the model with its input stage folded, its SiLUs fused or its max pools chained does not load ({}); using it unchanged",
                  file.string(), ex.msg);
     return net_from_bytes(bytes, file);
   }

@@ -18,6 +18,7 @@ cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string&
 // has one: `folded` then says how to rearrange the input blob before Net::setInput; it is left
 // empty when the model is loaded without it. SiLU activations are fused into one layer each
 // (fuse_silu, silu_layer.h); the outputs then differ from the original model's by float rounding.
+// Max pools side by side on one tensor (SPP) are chained (cascade_max_pools: the same output).
 cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint,
                            std::optional<SpaceToDepth>& folded);
 

@@ -114,6 +114,59 @@ std::string silu_model(SiluShape shape) {
       {varint_field(1, 7), bytes_field(2, "wardmap-test"), bytes_field(7, serialize(g)), bytes_field(8, opset)});
 }
 
+std::string ints_attribute(const std::string& name, const std::vector<std::int64_t>& values) {
+  std::vector<wire::Field> f = {bytes_field(1, name)};
+  for (std::int64_t v : values) f.push_back(varint_field(8, static_cast<std::uint64_t>(v)));
+  f.push_back(varint_field(20, 7));
+  return serialize(f);
+}
+
+struct PoolSpec {
+  std::vector<int> kernels = {5, 9, 13};
+  int stride = 1;
+  bool same_padding = true;
+  int ceil_mode = 0;
+};
+
+// x (1x2x9x11) -> a MaxPool of x per kernel (YOLOX's SPP) -> Concat(x, the pools) -> y.
+std::string pool_model(const PoolSpec& spec = {}) {
+  std::vector<wire::Field> g;
+  std::vector<std::string> cat = {"x"};
+  for (int k : spec.kernels) {
+    const std::int64_t p = spec.same_padding ? k / 2 : 0;
+    const std::string out = "pool" + std::to_string(k);
+    g.push_back(bytes_field(1, node("MaxPool", {"x"}, {out},
+                                    {int_attribute("ceil_mode", spec.ceil_mode), ints_attribute("kernel_shape", {k, k}),
+                                     ints_attribute("pads", {p, p, p, p}), ints_attribute("strides", {spec.stride, spec.stride})})));
+    cat.push_back(out);
+  }
+  g.push_back(bytes_field(1, node("Concat", cat, {"y"}, {int_attribute("axis", 1)})));
+  g.push_back(bytes_field(2, "pool_test"));
+  g.push_back(bytes_field(11, float_value("x", {1, 2, 9, 11})));
+  g.push_back(bytes_field(12, float_value("y", {1, 2 * static_cast<int>(cat.size()), 9, 11})));
+  const std::string opset = serialize({bytes_field(1, ""), varint_field(2, 11)});
+  return serialize(
+      {varint_field(1, 7), bytes_field(2, "wardmap-test"), bytes_field(7, serialize(g)), bytes_field(8, opset)});
+}
+
+// Each node's inputs and, for a MaxPool, its kernel_shape, in order.
+std::vector<std::pair<std::vector<std::string>, std::vector<std::int64_t>>> pool_wiring(const std::string& onnx) {
+  std::vector<std::pair<std::vector<std::string>, std::vector<std::int64_t>>> out;
+  for (const wire::Field& f : wire::parse(onnx))
+    if (f.number == 7)
+      for (const std::string& n : wire::strings(wire::parse(f.bytes), 1)) {
+        const std::vector<wire::Field> fields = wire::parse(n);
+        std::vector<std::int64_t> kernel;
+        for (const std::string& a : wire::strings(fields, 5)) {
+          const std::vector<wire::Field> af = wire::parse(a);
+          if (wire::strings(fields, 4).front() == "MaxPool" && wire::strings(af, 1).front() == "kernel_shape")
+            kernel = wire::varints(af, 8);
+        }
+        out.emplace_back(wire::strings(fields, 1), kernel);
+      }
+  return out;
+}
+
 // The op types of a model's nodes, in order.
 std::vector<std::string> op_types(const std::string& onnx) {
   std::vector<std::string> ops;
@@ -253,6 +306,53 @@ TEST(OnnxFold, SigmoidsThatAreNotSiluAreLeftAlone) {
                std::runtime_error);  // truncated
 }
 
+TEST(OnnxFold, SideBySideMaxPoolsAreChainedAndTheOutputIsUnchanged) {
+  const std::string onnx = pool_model();
+  const std::optional<std::string> chained = cascade_max_pools(onnx);
+  ASSERT_TRUE(chained.has_value());
+  EXPECT_EQ(op_types(*chained), op_types(onnx));
+  const auto wiring = pool_wiring(*chained);
+  ASSERT_EQ(wiring.size(), 4u);
+  EXPECT_EQ(wiring[0].first, std::vector<std::string>{"x"});
+  EXPECT_EQ(wiring[1].first, std::vector<std::string>{"pool5"});  // 9 = 5 then 5
+  EXPECT_EQ(wiring[2].first, std::vector<std::string>{"pool9"});  // 13 = 9 then 5
+  for (size_t i = 0; i < 3; ++i) EXPECT_EQ(wiring[i].second, (std::vector<std::int64_t>{5, 5})) << i;
+
+  // Negative values too: a pool that counted the padding as 0 would differ at the borders.
+  const int dims[4] = {1, 2, 9, 11};
+  cv::Mat blob(4, dims, CV_32F);
+  cv::randu(blob, -5.0, 5.0);
+  const cv::Mat reference = forward(onnx, blob), out = forward(*chained, blob);
+  ASSERT_EQ(out.total(), reference.total());
+  EXPECT_EQ(cv::norm(out.reshape(1, 1), reference.reshape(1, 1), cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(out.reshape(1, 1), cv::NORM_INF), 4.0);
+
+  // Kernels 3 and 7: the second reads the first with 5.
+  PoolSpec two;
+  two.kernels = {3, 7};
+  const std::optional<std::string> chained2 = cascade_max_pools(pool_model(two));
+  ASSERT_TRUE(chained2.has_value());
+  EXPECT_EQ(pool_wiring(*chained2)[1].second, (std::vector<std::int64_t>{5, 5}));
+  EXPECT_EQ(cv::norm(forward(*chained2, blob).reshape(1, 1), forward(pool_model(two), blob).reshape(1, 1), cv::NORM_INF),
+            0.0);
+}
+
+TEST(OnnxFold, OtherMaxPoolsAreLeftAlone) {
+  PoolSpec one, strided, unpadded, ceil, shrinking, equal;
+  one.kernels = {5};
+  strided.stride = 2;
+  unpadded.same_padding = false;
+  ceil.ceil_mode = 1;
+  shrinking.kernels = {13, 9, 5};  // the chain's inputs would come after their users
+  equal.kernels = {5, 5};
+  for (const PoolSpec& spec : {one, strided, unpadded, ceil, shrinking, equal})
+    EXPECT_FALSE(cascade_max_pools(pool_model(spec)).has_value()) << spec.kernels.size() << " " << spec.stride;
+  EXPECT_FALSE(cascade_max_pools(focus_model()).has_value());
+  EXPECT_THROW(cascade_max_pools("\x0a\x05"
+                                 "ab"),
+               std::runtime_error);  // truncated
+}
+
 TEST(OnnxFold, YoloxNanoRewrittenGivesTheSameOutput) {
   WARDMAP_REQUIRE_MODEL("yolox-nano/yolox_nano_416x416.onnx");
   WARDMAP_REQUIRE_DATA("images");
@@ -263,6 +363,19 @@ TEST(OnnxFold, YoloxNanoRewrittenGivesTheSameOutput) {
   const std::vector<std::array<int, 2>> yolox_order = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
   EXPECT_EQ(fold->offsets, yolox_order);
   cv::dnn::Net original = load_onnx_net(file, "missing");
+  {  // its SPP block is chained: three 5 x 5 pools
+    std::ifstream in(file, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::optional<std::string> chained = cascade_max_pools(bytes);
+    ASSERT_TRUE(chained.has_value()) << "YOLOX-nano's SPP pools were not recognised";
+    int pools = 0;
+    for (const auto& [inputs, kernel] : pool_wiring(*chained))
+      if (!kernel.empty()) {
+        EXPECT_EQ(kernel, (std::vector<std::int64_t>{5, 5}));
+        ++pools;
+      }
+    EXPECT_EQ(pools, 3);
+  }
   // Each SiLU took the place of a Sigmoid (and a Mul); the heads' own Sigmoids stay.
   const int silus = folded.getLayersCount(kSiluOpType);
   EXPECT_GT(silus, 50);
