@@ -23,7 +23,7 @@ DnnDetector::DnnDetector(ModelDescription model, const fs::path& onnx_file, cons
     group_of_class_.push_back(label.empty() ? -1 : group_ids.emplace(label, next).first->second);
   }
 
-  net_ = load_onnx_net(onnx_file, "model file not found", input_fold_);
+  net_ = load_onnx_net(onnx_file, "model file not found", rewrites_);
 
   output_names_ = model_.output.names;
   output_names_.insert(output_names_.end(), model_.output.box_names.begin(), model_.output.box_names.end());
@@ -40,9 +40,10 @@ DnnDetector::DnnDetector(ModelDescription model, const fs::path& onnx_file, cons
 std::vector<Detection> DnnDetector::detect(const cv::Mat& image, double /*timestamp*/) {
   const cv::Mat bgr = to_bgr8(image);
   const Letterbox lb = make_letterbox(bgr, model_.input);
-  net_.setInput(input_fold_ ? input_fold_->apply(lb.blob) : lb.blob);
+  net_.setInput(rewrites_.prepare_input(lb.blob));
   std::vector<cv::Mat> outputs;
   net_.forward(outputs, output_names_);
+  for (size_t i = 0; i < outputs.size(); ++i) outputs[i] = rewrites_.restore_output(output_names_[i], outputs[i]);
 
   const float min_score = options_.score_threshold;
   std::vector<Candidate> candidates;

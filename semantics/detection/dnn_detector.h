@@ -11,7 +11,7 @@
 
 #include "semantics/detection/detection.h"
 #include "semantics/detection/model_description.h"
-#include "semantics/detection/onnx_fold.h"
+#include "semantics/detection/onnx_net.h"
 
 namespace wardmap::semantics {
 
@@ -38,7 +38,7 @@ class DnnDetector : public Detector {
   std::vector<std::string> landmark_of_class_;  // "" = dropped in this landmark set
   std::vector<int> group_of_class_;             // NMS group: index of the landmark label
   cv::dnn::Net net_;
-  std::optional<SpaceToDepth> input_fold_;  // YOLOX's Focus stage done in C++ (onnx_fold.h)
+  OnnxRewrites rewrites_;  // YOLOX's Focus stage and output Transpose done in C++ (onnx_net.h)
   std::vector<std::string> output_names_;  // requested by name (NanoDet's unconnected order differs)
 };
 

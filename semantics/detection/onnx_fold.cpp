@@ -102,6 +102,32 @@ bool add_slice_phase(const Node& slice, const Constants& constants, const std::a
   return true;
 }
 
+// A ValueInfoProto's tensor element type (-1 when absent) and dims (0 for one not known).
+struct TensorShape {
+  std::int64_t elem_type = -1;
+  std::vector<std::int64_t> dims;
+
+  bool known(size_t rank) const {
+    if (elem_type < 0 || dims.size() != rank) return false;
+    for (std::int64_t d : dims)
+      if (d <= 0) return false;
+    return true;
+  }
+};
+
+TensorShape tensor_shape(const std::string& value_info) {
+  const std::vector<wire::Field> tensor_type =
+      wire::parse(first_string(wire::parse(first_string(wire::parse(value_info), kValueInfoType)), kTypeTensorType));
+  TensorShape shape;
+  const std::vector<std::int64_t> elem_type = wire::varints(tensor_type, kTensorTypeElemType);
+  if (elem_type.size() == 1) shape.elem_type = elem_type[0];
+  for (const std::string& d : wire::strings(wire::parse(first_string(tensor_type, kTensorTypeShape)), kShapeDim)) {
+    const std::vector<std::int64_t> value = wire::varints(wire::parse(d), kDimValue);
+    shape.dims.push_back(value.size() == 1 ? value[0] : 0);
+  }
+  return shape;
+}
+
 std::string tensor_value_info(const std::string& name, std::int64_t elem_type, const std::vector<std::int64_t>& dims) {
   std::vector<wire::Field> shape;
   for (std::int64_t d : dims)
@@ -169,10 +195,16 @@ std::optional<ParsedGraph> parse_graph(const std::string& onnx) {
   return p;
 }
 
+// True for a graph field `number` (a ValueInfoProto: value_info, input, output) that names one of
+// `tensors`.
+bool value_info_naming(const wire::Field& field, std::uint32_t number, const std::set<std::string>& tensors) {
+  return field.number == number && field.type == wire::kLengthDelimited &&
+         tensors.count(first_string(wire::parse(field.bytes), kValueInfoName));
+}
+
 // True for a graph's value_info field that names one of `tensors` (a tensor a rewrite removed).
 bool is_value_info_of(const wire::Field& field, const std::set<std::string>& tensors) {
-  return field.number == kGraphValueInfo && field.type == wire::kLengthDelimited &&
-         tensors.count(first_string(wire::parse(field.bytes), kValueInfoName));
+  return value_info_naming(field, kGraphValueInfo, tensors);
 }
 
 std::map<std::string, std::vector<size_t>> consumers_of(const std::vector<Node>& nodes) {
@@ -231,16 +263,9 @@ std::optional<FoldedModel> fold_space_to_depth_input(const std::string& onnx) {
     input_field = i, input = name, ++inputs;
   }
   if (inputs != 1) return std::nullopt;
-  const std::vector<wire::Field> tensor_type = wire::parse(
-      first_string(wire::parse(first_string(wire::parse(graph[input_field].bytes), kValueInfoType)), kTypeTensorType));
-  const std::vector<std::int64_t> elem_type = wire::varints(tensor_type, kTensorTypeElemType);
-  std::vector<std::int64_t> dims;
-  for (const std::string& d : wire::strings(wire::parse(first_string(tensor_type, kTensorTypeShape)), kShapeDim)) {
-    const std::vector<std::int64_t> value = wire::varints(wire::parse(d), kDimValue);
-    if (value.size() != 1 || value[0] <= 0) return std::nullopt;
-    dims.push_back(value[0]);
-  }
-  if (elem_type.size() != 1 || dims.size() != 4 || dims[2] % 2 != 0 || dims[3] % 2 != 0) return std::nullopt;
+  const TensorShape shape = tensor_shape(graph[input_field].bytes);
+  if (!shape.known(4) || shape.dims[2] % 2 != 0 || shape.dims[3] % 2 != 0) return std::nullopt;
+  const std::vector<std::int64_t>& dims = shape.dims;
 
   std::map<std::string, std::vector<size_t>> consumers = consumers_of(nodes);
 
@@ -301,7 +326,7 @@ std::optional<FoldedModel> fold_space_to_depth_input(const std::string& onnx) {
     if (i == input_field) {
       rewritten.push_back(wire::bytes_field(
           kGraphInput,
-          tensor_value_info(cat.outputs[0], elem_type[0], {dims[0], 4 * dims[1], dims[2] / 2, dims[3] / 2})));
+          tensor_value_info(cat.outputs[0], shape.elem_type, {dims[0], 4 * dims[1], dims[2] / 2, dims[3] / 2})));
       continue;
     }
     rewritten.push_back(std::move(graph[i]));
@@ -431,6 +456,75 @@ std::optional<std::string> cascade_max_pools(const std::string& onnx) {
     rewritten.push_back(it == replaced.end() ? std::move(parsed->graph[i]) : wire::bytes_field(kGraphNode, it->second));
   }
   return parsed->serialize_with(rewritten);
+}
+
+std::optional<FoldedOutputs> fold_output_transposes(const std::string& onnx) {
+  std::optional<ParsedGraph> parsed = parse_graph(onnx);
+  if (!parsed) return std::nullopt;
+  const std::vector<Node>& nodes = parsed->nodes;
+  const std::map<std::string, std::vector<size_t>> consumers = consumers_of(nodes);
+  std::map<std::string, size_t> producer;
+  for (size_t k = 0; k < nodes.size(); ++k)
+    for (const std::string& out : nodes[k].outputs) producer[out] = k;
+  FoldedOutputs folded;
+  std::set<size_t> dropped;                   // the Transposes' graph fields
+  std::map<size_t, std::string> renamed;      // producer's graph field -> its rewritten node
+  std::set<std::string> dropped_tensors;      // the tensors before them (value_info naming them goes)
+  for (const Node& t : nodes) {
+    if (t.op != "Transpose" || t.inputs.size() != 1 || t.outputs.size() != 1) continue;
+    const std::string& x = t.inputs[0];
+    const std::string& y = t.outputs[0];
+    const auto* perm = t.attribute("perm");
+    if (!perm || wire::varints(*perm, kAttributeInts) != std::vector<std::int64_t>{0, 2, 1}) continue;
+    if (!parsed->graph_outputs.count(y) || parsed->graph_outputs.count(x) || consumers.at(x).size() != 1) continue;
+    const auto p = producer.find(x);
+    if (p == producer.end() || renamed.count(nodes[p->second].field)) continue;  // a graph input, or done
+    std::vector<wire::Field> fields = wire::parse(parsed->graph[nodes[p->second].field].bytes);
+    for (wire::Field& f : fields)
+      if (f.number == kNodeOutput && f.type == wire::kLengthDelimited && f.bytes == x) f.bytes = y;
+    renamed[nodes[p->second].field] = wire::serialize(fields);
+    dropped.insert(t.field);
+    dropped_tensors.insert(x);
+    folded.outputs.push_back(y);
+  }
+  if (folded.outputs.empty()) return std::nullopt;
+  const std::set<std::string> outputs(folded.outputs.begin(), folded.outputs.end());
+  std::vector<wire::Field> rewritten;
+  for (size_t i = 0; i < parsed->graph.size(); ++i) {
+    if (dropped.count(i) || is_value_info_of(parsed->graph[i], dropped_tensors)) continue;
+    const auto it = renamed.find(i);
+    if (it != renamed.end()) {
+      rewritten.push_back(wire::bytes_field(kGraphNode, it->second));
+    } else if (value_info_naming(parsed->graph[i], kGraphOutput, outputs)) {
+      // Its declared shape B x N x C becomes B x C x N (kept as it is when not fully known).
+      const TensorShape shape = tensor_shape(parsed->graph[i].bytes);
+      if (shape.known(3)) {
+        const std::string name = first_string(wire::parse(parsed->graph[i].bytes), kValueInfoName);
+        rewritten.push_back(wire::bytes_field(
+            kGraphOutput, tensor_value_info(name, shape.elem_type, {shape.dims[0], shape.dims[2], shape.dims[1]})));
+      } else {
+        rewritten.push_back(std::move(parsed->graph[i]));
+      }
+    } else {
+      rewritten.push_back(std::move(parsed->graph[i]));
+    }
+  }
+  folded.onnx = parsed->serialize_with(rewritten);
+  return folded;
+}
+
+cv::Mat transpose_output(const cv::Mat& output) {
+  if (output.dims != 3 || output.type() != CV_32F || !output.isContinuous())
+    throw std::invalid_argument("transpose_output: expected a continuous B x C x N float blob");
+  const int b = output.size[0], c = output.size[1], n = output.size[2];
+  const int dims[3] = {b, n, c};
+  cv::Mat out(3, dims, CV_32F);
+  for (int k = 0; k < b; ++k) {
+    const cv::Mat from(c, n, CV_32F, const_cast<float*>(output.ptr<float>()) + static_cast<size_t>(k) * c * n);
+    cv::Mat to(n, c, CV_32F, out.ptr<float>() + static_cast<size_t>(k) * c * n);
+    cv::transpose(from, to);
+  }
+  return out;
 }
 
 }  // namespace wardmap::semantics

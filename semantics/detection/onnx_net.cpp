@@ -1,5 +1,6 @@
 #include "semantics/detection/onnx_net.h"
 
+#include <algorithm>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
@@ -42,32 +43,41 @@ cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string&
   return read_checked(file, [&] { return cv::dnn::readNetFromONNX(file.string()); });
 }
 
+cv::Mat OnnxRewrites::restore_output(const std::string& name, const cv::Mat& output) const {
+  const bool transposed =
+      std::find(transposed_outputs.begin(), transposed_outputs.end(), name) != transposed_outputs.end();
+  return transposed ? transpose_output(output) : output;
+}
+
 cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint,
-                           std::optional<SpaceToDepth>& folded) {
-  folded.reset();
+                           OnnxRewrites& rewrites) {
+  rewrites = OnnxRewrites();
   if (!std::filesystem::is_regular_file(file)) throw InputError(file.string(), missing_hint);
   std::ifstream in(file, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in && !in.eof()) throw InputError(file.string(), "cannot read the ONNX model");
+  // Each rewrite reads the last one's model (or the file's bytes).
   std::optional<FoldedModel> folded_input;
   std::optional<std::string> fused, cascaded;
+  std::optional<FoldedOutputs> folded_outputs;
+  const std::string* model = &bytes;
   try {
-    folded_input = fold_space_to_depth_input(bytes);
-    const std::string& unfolded = folded_input ? folded_input->onnx : bytes;
-    fused = fuse_silu(unfolded);
-    cascaded = cascade_max_pools(fused ? *fused : unfolded);
+    if ((folded_input = fold_space_to_depth_input(*model))) model = &folded_input->onnx;
+    if ((fused = fuse_silu(*model))) model = &*fused;
+    if ((cascaded = cascade_max_pools(*model))) model = &*cascaded;
+    if ((folded_outputs = fold_output_transposes(*model))) model = &folded_outputs->onnx;
   } catch (const std::runtime_error& ex) {
     throw InputError(file.string(), std::string("not an ONNX model: ") + ex.what());
   }
-  if (!folded_input && !fused && !cascaded) return net_from_bytes(bytes, file);
-  const std::string& rewritten = cascaded ? *cascaded : fused ? *fused : folded_input->onnx;
+  if (model == &bytes) return net_from_bytes(bytes, file);
   try {
     if (fused) register_silu_layer();
-    cv::dnn::Net net = on_cpu(cv::dnn::readNetFromONNX(rewritten.data(), rewritten.size()), file);
-    if (folded_input) folded = std::move(folded_input->input);
+    cv::dnn::Net net = on_cpu(cv::dnn::readNetFromONNX(model->data(), model->size()), file);
+    if (folded_input) rewrites.input = std::move(folded_input->input);
+    if (folded_outputs) rewrites.transposed_outputs = folded_outputs->outputs;
     return net;
   } catch (const cv::Exception& ex) {  // our rewrite's fault, not the user's: use the model as it is
-    spdlog::warn("{}: the model with its input stage folded, its SiLUs fused or its max pools chained does not load ({}); using it unchanged",
+    spdlog::warn("{}: the model as rewritten for speed (onnx_fold.h) does not load ({}); using it unchanged",
                  file.string(), ex.msg);
     return net_from_bytes(bytes, file);
   }

@@ -5,6 +5,7 @@
 #include <opencv2/dnn.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "semantics/detection/onnx_fold.h"
 
@@ -14,12 +15,24 @@ namespace wardmap::semantics {
 // cannot load it.
 cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint);
 
-// The same, with a strided-slice input stage folded out of the graph (onnx_fold.h) when the model
-// has one: `folded` then says how to rearrange the input blob before Net::setInput; it is left
-// empty when the model is loaded without it. SiLU activations are fused into one layer each
-// (fuse_silu, silu_layer.h); the outputs then differ from the original model's by float rounding.
-// Max pools side by side on one tensor (SPP) are chained (cascade_max_pools: the same output).
+// What load_onnx_net's rewrites ask of the caller: the input rearranged before Net::setInput
+// (a strided-slice input stage folded out of the graph), outputs transposed back after forward.
+struct OnnxRewrites {
+  std::optional<SpaceToDepth> input;  // empty: the input blob as it is
+  std::vector<std::string> transposed_outputs;  // fold_output_transposes: these come out B x C x N
+
+  cv::Mat prepare_input(const cv::Mat& blob) const { return input ? input->apply(blob) : blob; }
+  // The output `name` as the original model gives it.
+  cv::Mat restore_output(const std::string& name, const cv::Mat& output) const;
+};
+
+// The same, with the model rewritten for speed when it allows (onnx_fold.h): a strided-slice input
+// stage folded out of the graph, SiLU activations fused into one layer each (fuse_silu,
+// silu_layer.h; the outputs then differ from the original model's by float rounding), max pools
+// side by side on one tensor (SPP) chained, and outputs' final Transposes left to the caller.
+// `rewrites` says what the caller must do about them; it is left empty when the model is loaded
+// as it is.
 cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint,
-                           std::optional<SpaceToDepth>& folded);
+                           OnnxRewrites& rewrites);
 
 }  // namespace wardmap::semantics

@@ -353,15 +353,68 @@ TEST(OnnxFold, OtherMaxPoolsAreLeftAlone) {
                std::runtime_error);  // truncated
 }
 
+enum class TransposeShape { kOutput, kOtherPerm, kAlsoReadElsewhere, kNotAnOutput };
+
+// x (1x3x5) -> Relu -> r -> Transpose (0, 2, 1) -> y, with the variations of TransposeShape: another
+// perm, r also read by a second node (a graph output z), the Transpose's output read on (by a Relu
+// making y).
+std::string transpose_model(TransposeShape shape) {
+  std::vector<wire::Field> g;
+  g.push_back(bytes_field(1, node("Relu", {"x"}, {"r"})));
+  const std::vector<std::int64_t> perm =
+      shape == TransposeShape::kOtherPerm ? std::vector<std::int64_t>{0, 1, 2} : std::vector<std::int64_t>{0, 2, 1};
+  const std::string t = shape == TransposeShape::kNotAnOutput ? "t" : "y";
+  g.push_back(bytes_field(1, node("Transpose", {"r"}, {t}, {ints_attribute("perm", perm)})));
+  if (shape == TransposeShape::kNotAnOutput) g.push_back(bytes_field(1, node("Relu", {"t"}, {"y"})));
+  if (shape == TransposeShape::kAlsoReadElsewhere) g.push_back(bytes_field(1, node("Relu", {"r"}, {"z"})));
+  g.push_back(bytes_field(2, "transpose_test"));
+  g.push_back(bytes_field(11, float_value("x", {1, 3, 5})));
+  g.push_back(bytes_field(12, float_value("y", {1, 5, 3})));
+  if (shape == TransposeShape::kAlsoReadElsewhere) g.push_back(bytes_field(12, float_value("z", {1, 3, 5})));
+  const std::string opset = serialize({bytes_field(1, ""), varint_field(2, 11)});
+  return serialize(
+      {varint_field(1, 7), bytes_field(2, "wardmap-test"), bytes_field(7, serialize(g)), bytes_field(8, opset)});
+}
+
+TEST(OnnxFold, OutputTransposeIsLeftToTheCallerAndTheOutputIsUnchanged) {
+  const std::string onnx = transpose_model(TransposeShape::kOutput);
+  const std::optional<FoldedOutputs> folded = fold_output_transposes(onnx);
+  ASSERT_TRUE(folded.has_value());
+  EXPECT_EQ(folded->outputs, std::vector<std::string>{"y"});
+  EXPECT_EQ(op_types(folded->onnx), std::vector<std::string>{"Relu"});
+  const int dims[3] = {1, 3, 5};
+  cv::Mat blob(3, dims, CV_32F);
+  cv::randu(blob, -5.0, 5.0);
+  const cv::Mat reference = forward(onnx, blob);
+  const cv::Mat raw = forward(folded->onnx, blob);
+  ASSERT_EQ(raw.dims, 3);
+  EXPECT_EQ(raw.size[1], 3);
+  const cv::Mat out = transpose_output(raw);
+  ASSERT_EQ(out.dims, 3);
+  EXPECT_EQ(out.size[1], 5);
+  EXPECT_EQ(out.size[2], 3);
+  EXPECT_EQ(cv::norm(out.reshape(1, 1), reference.reshape(1, 1), cv::NORM_INF), 0.0);
+  EXPECT_EQ(out.ptr<float>()[1 * 3 + 2], std::max(0.0f, blob.ptr<float>()[2 * 5 + 1]));  // y[0][1][2] = relu(x[0][2][1])
+  EXPECT_THROW(transpose_output(cv::Mat(3, 5, CV_32F)), std::invalid_argument);
+
+  for (TransposeShape shape : {TransposeShape::kOtherPerm, TransposeShape::kAlsoReadElsewhere, TransposeShape::kNotAnOutput})
+    EXPECT_FALSE(fold_output_transposes(transpose_model(shape)).has_value()) << static_cast<int>(shape);
+  EXPECT_FALSE(fold_output_transposes(focus_model()).has_value());
+  EXPECT_THROW(fold_output_transposes("\x0a\x05"
+                                      "ab"),
+               std::runtime_error);  // truncated
+}
+
 TEST(OnnxFold, YoloxNanoRewrittenGivesTheSameOutput) {
   WARDMAP_REQUIRE_MODEL("yolox-nano/yolox_nano_416x416.onnx");
   WARDMAP_REQUIRE_DATA("images");
   const auto file = wardmap::test::shared_models_dir() / "yolox-nano/yolox_nano_416x416.onnx";
-  std::optional<SpaceToDepth> fold;
-  cv::dnn::Net folded = load_onnx_net(file, "missing", fold);
-  ASSERT_TRUE(fold.has_value()) << "YOLOX-nano's Focus stage was not recognised";
+  OnnxRewrites rewrites;
+  cv::dnn::Net folded = load_onnx_net(file, "missing", rewrites);
+  ASSERT_TRUE(rewrites.input.has_value()) << "YOLOX-nano's Focus stage was not recognised";
   const std::vector<std::array<int, 2>> yolox_order = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
-  EXPECT_EQ(fold->offsets, yolox_order);
+  EXPECT_EQ(rewrites.input->offsets, yolox_order);
+  EXPECT_EQ(rewrites.transposed_outputs, std::vector<std::string>{"output"});
   cv::dnn::Net original = load_onnx_net(file, "missing");
   {  // its SPP block is chained: three 5 x 5 pools
     std::ifstream in(file, std::ios::binary);
@@ -391,8 +444,8 @@ TEST(OnnxFold, YoloxNanoRewrittenGivesTheSameOutput) {
     const Letterbox lb = make_letterbox(image, model.input);
     EXPECT_EQ(lb.canvas, multiple ? cv::Size(352, 416) : cv::Size(416, 416));
     original.setInput(lb.blob);
-    folded.setInput(fold->apply(lb.blob));
-    const cv::Mat a = original.forward().clone(), b = folded.forward().clone();
+    folded.setInput(rewrites.prepare_input(lb.blob));
+    const cv::Mat a = original.forward().clone(), b = rewrites.restore_output("output", folded.forward("output"));
     ASSERT_EQ(a.total(), b.total());
     EXPECT_EQ(a.size[1], (lb.canvas.width / 8) * (lb.canvas.height / 8) + (lb.canvas.width / 16) * (lb.canvas.height / 16) +
                              (lb.canvas.width / 32) * (lb.canvas.height / 32));
