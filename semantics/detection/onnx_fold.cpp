@@ -476,7 +476,10 @@ std::optional<FoldedOutputs> fold_output_transposes(const std::string& onnx) {
     const std::string& y = t.outputs[0];
     const auto* perm = t.attribute("perm");
     if (!perm || wire::varints(*perm, kAttributeInts) != std::vector<std::int64_t>{0, 2, 1}) continue;
-    if (!parsed->graph_outputs.count(y) || parsed->graph_outputs.count(x) || consumers.at(x).size() != 1) continue;
+    // y only an output (a node reading it would get the untransposed tensor), x read by t alone.
+    if (!parsed->graph_outputs.count(y) || consumers.count(y) || parsed->graph_outputs.count(x) ||
+        consumers.at(x).size() != 1)
+      continue;
     const auto p = producer.find(x);
     if (p == producer.end() || renamed.count(nodes[p->second].field)) continue;  // a graph input, or done
     std::vector<wire::Field> fields = wire::parse(parsed->graph[nodes[p->second].field].bytes);

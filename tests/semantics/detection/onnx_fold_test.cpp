@@ -353,11 +353,11 @@ TEST(OnnxFold, OtherMaxPoolsAreLeftAlone) {
                std::runtime_error);  // truncated
 }
 
-enum class TransposeShape { kOutput, kOtherPerm, kAlsoReadElsewhere, kNotAnOutput };
+enum class TransposeShape { kOutput, kOtherPerm, kAlsoReadElsewhere, kNotAnOutput, kOutputReadOn };
 
 // x (1x3x5) -> Relu -> r -> Transpose (0, 2, 1) -> y, with the variations of TransposeShape: another
 // perm, r also read by a second node (a graph output z), the Transpose's output read on (by a Relu
-// making y).
+// making y), y both an output and read on (by a Relu making z).
 std::string transpose_model(TransposeShape shape) {
   std::vector<wire::Field> g;
   g.push_back(bytes_field(1, node("Relu", {"x"}, {"r"})));
@@ -367,10 +367,12 @@ std::string transpose_model(TransposeShape shape) {
   g.push_back(bytes_field(1, node("Transpose", {"r"}, {t}, {ints_attribute("perm", perm)})));
   if (shape == TransposeShape::kNotAnOutput) g.push_back(bytes_field(1, node("Relu", {"t"}, {"y"})));
   if (shape == TransposeShape::kAlsoReadElsewhere) g.push_back(bytes_field(1, node("Relu", {"r"}, {"z"})));
+  if (shape == TransposeShape::kOutputReadOn) g.push_back(bytes_field(1, node("Relu", {"y"}, {"z"})));
   g.push_back(bytes_field(2, "transpose_test"));
   g.push_back(bytes_field(11, float_value("x", {1, 3, 5})));
   g.push_back(bytes_field(12, float_value("y", {1, 5, 3})));
   if (shape == TransposeShape::kAlsoReadElsewhere) g.push_back(bytes_field(12, float_value("z", {1, 3, 5})));
+  if (shape == TransposeShape::kOutputReadOn) g.push_back(bytes_field(12, float_value("z", {1, 5, 3})));
   const std::string opset = serialize({bytes_field(1, ""), varint_field(2, 11)});
   return serialize(
       {varint_field(1, 7), bytes_field(2, "wardmap-test"), bytes_field(7, serialize(g)), bytes_field(8, opset)});
@@ -397,7 +399,8 @@ TEST(OnnxFold, OutputTransposeIsLeftToTheCallerAndTheOutputIsUnchanged) {
   EXPECT_EQ(out.ptr<float>()[1 * 3 + 2], std::max(0.0f, blob.ptr<float>()[2 * 5 + 1]));  // y[0][1][2] = relu(x[0][2][1])
   EXPECT_THROW(transpose_output(cv::Mat(3, 5, CV_32F)), std::invalid_argument);
 
-  for (TransposeShape shape : {TransposeShape::kOtherPerm, TransposeShape::kAlsoReadElsewhere, TransposeShape::kNotAnOutput})
+  for (TransposeShape shape : {TransposeShape::kOtherPerm, TransposeShape::kAlsoReadElsewhere, TransposeShape::kNotAnOutput,
+                               TransposeShape::kOutputReadOn})
     EXPECT_FALSE(fold_output_transposes(transpose_model(shape)).has_value()) << static_cast<int>(shape);
   EXPECT_FALSE(fold_output_transposes(focus_model()).has_value());
   EXPECT_THROW(fold_output_transposes("\x0a\x05"
