@@ -207,6 +207,19 @@ bool is_value_info_of(const wire::Field& field, const std::set<std::string>& ten
   return value_info_naming(field, kGraphValueInfo, tensors);
 }
 
+// The model with its graph rewritten: the graph fields in `dropped` and the value_info naming one
+// of `dropped_tensors` left out, each field of `replaced` written in its place.
+std::string rewrite_graph(ParsedGraph& p, const std::set<size_t>& dropped, const std::set<std::string>& dropped_tensors,
+                          std::map<size_t, wire::Field> replaced) {
+  std::vector<wire::Field> rewritten;
+  for (size_t i = 0; i < p.graph.size(); ++i) {
+    if (dropped.count(i) || is_value_info_of(p.graph[i], dropped_tensors)) continue;
+    const auto it = replaced.find(i);
+    rewritten.push_back(it == replaced.end() ? std::move(p.graph[i]) : std::move(it->second));
+  }
+  return p.serialize_with(rewritten);
+}
+
 std::map<std::string, std::vector<size_t>> consumers_of(const std::vector<Node>& nodes) {
   std::map<std::string, std::vector<size_t>> consumers;
   for (size_t k = 0; k < nodes.size(); ++k)
@@ -319,19 +332,9 @@ std::optional<FoldedModel> fold_space_to_depth_input(const std::string& onnx) {
     dropped_fields.insert(nodes[k].field);
     dropped_tensors.insert(nodes[k].outputs.begin(), nodes[k].outputs.end());
   }
-  std::vector<wire::Field> rewritten;
-  for (size_t i = 0; i < graph.size(); ++i) {
-    if (dropped_fields.count(i)) continue;
-    if (is_value_info_of(graph[i], dropped_tensors)) continue;
-    if (i == input_field) {
-      rewritten.push_back(wire::bytes_field(
-          kGraphInput,
-          tensor_value_info(cat.outputs[0], shape.elem_type, {dims[0], 4 * dims[1], dims[2] / 2, dims[3] / 2})));
-      continue;
-    }
-    rewritten.push_back(std::move(graph[i]));
-  }
-  return FoldedModel{parsed->serialize_with(rewritten), std::move(s2d)};
+  const wire::Field new_input = wire::bytes_field(
+      kGraphInput, tensor_value_info(cat.outputs[0], shape.elem_type, {dims[0], 4 * dims[1], dims[2] / 2, dims[3] / 2}));
+  return FoldedModel{rewrite_graph(*parsed, dropped_fields, dropped_tensors, {{input_field, new_input}}), std::move(s2d)};
 }
 
 std::optional<std::string> fuse_silu(const std::string& onnx) {
@@ -339,7 +342,7 @@ std::optional<std::string> fuse_silu(const std::string& onnx) {
   if (!parsed) return std::nullopt;
   const std::vector<Node>& nodes = parsed->nodes;
   const std::map<std::string, std::vector<size_t>> consumers = consumers_of(nodes);
-  std::map<size_t, std::string> replaced;  // Mul's graph field -> the fused node
+  std::map<size_t, wire::Field> replaced;  // Mul's graph field -> the fused node
   std::set<size_t> dropped;                // Sigmoids' graph fields
   std::set<std::string> dropped_tensors;   // their outputs
   for (const Node& sigmoid : nodes) {
@@ -353,19 +356,13 @@ std::optional<std::string> fuse_silu(const std::string& onnx) {
     if (!((mul.inputs[0] == x && mul.inputs[1] == s) || (mul.inputs[0] == s && mul.inputs[1] == x))) continue;
     dropped.insert(sigmoid.field);
     dropped_tensors.insert(s);
-    replaced[mul.field] = wire::serialize({wire::bytes_field(kNodeInput, x), wire::bytes_field(kNodeOutput, mul.outputs[0]),
-                                           wire::bytes_field(kNodeName, "wardmap_silu_" + std::to_string(replaced.size())),
-                                           wire::bytes_field(kNodeOpType, kSiluOpType)});
+    const std::string name = "wardmap_silu_" + std::to_string(replaced.size());
+    replaced[mul.field] = wire::bytes_field(
+        kGraphNode, wire::serialize({wire::bytes_field(kNodeInput, x), wire::bytes_field(kNodeOutput, mul.outputs[0]),
+                                     wire::bytes_field(kNodeName, name), wire::bytes_field(kNodeOpType, kSiluOpType)}));
   }
   if (replaced.empty()) return std::nullopt;
-  std::vector<wire::Field> rewritten;
-  for (size_t i = 0; i < parsed->graph.size(); ++i) {
-    if (dropped.count(i)) continue;
-    if (is_value_info_of(parsed->graph[i], dropped_tensors)) continue;
-    const auto fused = replaced.find(i);
-    rewritten.push_back(fused == replaced.end() ? std::move(parsed->graph[i]) : wire::bytes_field(kGraphNode, fused->second));
-  }
-  return parsed->serialize_with(rewritten);
+  return rewrite_graph(*parsed, dropped, dropped_tensors, std::move(replaced));
 }
 
 namespace {
@@ -426,7 +423,7 @@ std::optional<std::string> cascade_max_pools(const std::string& onnx) {
   std::map<std::string, std::vector<size_t>> pools;
   for (size_t k = 0; k < nodes.size(); ++k)
     if (same_size_max_pool_kernel(nodes[k]) > 0) pools[nodes[k].inputs[0]].push_back(k);
-  std::map<size_t, std::string> replaced;  // graph field -> the rewritten node
+  std::map<size_t, wire::Field> replaced;  // graph field -> the rewritten node
   for (const auto& [tensor, set] : pools) {
     if (set.size() < 2) continue;
     // Kernels growing in graph order, so that each pool's new input is made before it.
@@ -446,16 +443,11 @@ std::optional<std::string> cascade_max_pools(const std::string& onnx) {
       f.push_back(wire::bytes_field(kNodeAttribute, ints_attribute("kernel_shape", {k, k})));
       f.push_back(wire::bytes_field(kNodeAttribute, ints_attribute("pads", {k / 2, k / 2, k / 2, k / 2})));
       f.push_back(wire::bytes_field(kNodeAttribute, ints_attribute("strides", {1, 1})));
-      replaced[n.field] = wire::serialize(f);
+      replaced[n.field] = wire::bytes_field(kGraphNode, wire::serialize(f));
     }
   }
   if (replaced.empty()) return std::nullopt;
-  std::vector<wire::Field> rewritten;
-  for (size_t i = 0; i < parsed->graph.size(); ++i) {
-    const auto it = replaced.find(i);
-    rewritten.push_back(it == replaced.end() ? std::move(parsed->graph[i]) : wire::bytes_field(kGraphNode, it->second));
-  }
-  return parsed->serialize_with(rewritten);
+  return rewrite_graph(*parsed, {}, {}, std::move(replaced));
 }
 
 std::optional<FoldedOutputs> fold_output_transposes(const std::string& onnx) {
@@ -468,7 +460,7 @@ std::optional<FoldedOutputs> fold_output_transposes(const std::string& onnx) {
     for (const std::string& out : nodes[k].outputs) producer[out] = k;
   FoldedOutputs folded;
   std::set<size_t> dropped;                   // the Transposes' graph fields
-  std::map<size_t, std::string> renamed;      // producer's graph field -> its rewritten node
+  std::map<size_t, wire::Field> replaced;     // producer's graph field -> its rewritten node; the outputs
   std::set<std::string> dropped_tensors;      // the tensors before them (value_info naming them goes)
   for (const Node& t : nodes) {
     if (t.op != "Transpose" || t.inputs.size() != 1 || t.outputs.size() != 1) continue;
@@ -481,38 +473,27 @@ std::optional<FoldedOutputs> fold_output_transposes(const std::string& onnx) {
         consumers.at(x).size() != 1)
       continue;
     const auto p = producer.find(x);
-    if (p == producer.end() || renamed.count(nodes[p->second].field)) continue;  // a graph input, or done
+    if (p == producer.end() || replaced.count(nodes[p->second].field)) continue;  // a graph input, or done
     std::vector<wire::Field> fields = wire::parse(parsed->graph[nodes[p->second].field].bytes);
     for (wire::Field& f : fields)
       if (f.number == kNodeOutput && f.type == wire::kLengthDelimited && f.bytes == x) f.bytes = y;
-    renamed[nodes[p->second].field] = wire::serialize(fields);
+    replaced[nodes[p->second].field] = wire::bytes_field(kGraphNode, wire::serialize(fields));
     dropped.insert(t.field);
     dropped_tensors.insert(x);
     folded.outputs.push_back(y);
   }
   if (folded.outputs.empty()) return std::nullopt;
+  // Each output's declared shape B x N x C becomes B x C x N (kept as it is when not fully known).
   const std::set<std::string> outputs(folded.outputs.begin(), folded.outputs.end());
-  std::vector<wire::Field> rewritten;
   for (size_t i = 0; i < parsed->graph.size(); ++i) {
-    if (dropped.count(i) || is_value_info_of(parsed->graph[i], dropped_tensors)) continue;
-    const auto it = renamed.find(i);
-    if (it != renamed.end()) {
-      rewritten.push_back(wire::bytes_field(kGraphNode, it->second));
-    } else if (value_info_naming(parsed->graph[i], kGraphOutput, outputs)) {
-      // Its declared shape B x N x C becomes B x C x N (kept as it is when not fully known).
-      const TensorShape shape = tensor_shape(parsed->graph[i].bytes);
-      if (shape.known(3)) {
-        const std::string name = first_string(wire::parse(parsed->graph[i].bytes), kValueInfoName);
-        rewritten.push_back(wire::bytes_field(
-            kGraphOutput, tensor_value_info(name, shape.elem_type, {shape.dims[0], shape.dims[2], shape.dims[1]})));
-      } else {
-        rewritten.push_back(std::move(parsed->graph[i]));
-      }
-    } else {
-      rewritten.push_back(std::move(parsed->graph[i]));
-    }
+    if (!value_info_naming(parsed->graph[i], kGraphOutput, outputs)) continue;
+    const TensorShape shape = tensor_shape(parsed->graph[i].bytes);
+    if (!shape.known(3)) continue;
+    const std::string name = first_string(wire::parse(parsed->graph[i].bytes), kValueInfoName);
+    replaced[i] = wire::bytes_field(
+        kGraphOutput, tensor_value_info(name, shape.elem_type, {shape.dims[0], shape.dims[2], shape.dims[1]}));
   }
-  folded.onnx = parsed->serialize_with(rewritten);
+  folded.onnx = rewrite_graph(*parsed, dropped, dropped_tensors, std::move(replaced));
   return folded;
 }
 
