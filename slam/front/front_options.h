@@ -81,7 +81,8 @@ struct TrackingOptions {
   // pyramidal Lucas-Kanade flow (forward-backward checked, gated by the point's projection) and
   // observed there, so that points whose corner FAST does not find again or whose descriptor changed
   // live longer (docs/EXPERIMENTS.md, "Following map points by optical flow"). On in RGB-D, whose
-  // 15 ms budget holds its cost (1.3-1.6x in the benchmark); off in monocular, whose 10 ms does not.
+  // 15 ms budget holds its cost on ordinary hours (1.2-2.2x in the benchmark; over 15 ms on the
+  // slowest); off in monocular, whose 10 ms does not.
   bool flow_extend = true;              // tracking.flow_extend: RGB-D
   bool flow_extend_mono = false;        // tracking.flow_extend_mono
   bool flow(bool monocular) const { return monocular ? flow_extend_mono : flow_extend; }
