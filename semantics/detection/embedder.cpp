@@ -27,15 +27,18 @@ const cv::Scalar kStd(0.229, 0.224, 0.225);
 Embedder::Embedder(const std::filesystem::path& onnx_file, int threads) {
   if (threads < 1 || threads > 8)
     throw std::invalid_argument("Embedder: threads must be in [1, 8], got " + std::to_string(threads));
+  // Rewritten for speed (onnx_net.h; OSNet: its 60 depthwise convolutions), the same for every copy.
   for (int k = 0; k < threads; ++k)
-    nets_.push_back(
-        load_onnx_net(onnx_file, "embedding model not found (models/README.md says where to get OSNet x0.25)"));
+    nets_.push_back(load_onnx_net(
+        onnx_file, "embedding model not found (models/README.md says where to get OSNet x0.25)", rewrites_,
+        /*depthwise_convs=*/true));
 }
 
 namespace {
 
 // The embedding of `box` in a BGR 8-bit image, by `net` (Embedder::embed's contract).
-Eigen::VectorXf embed_crop(cv::dnn::Net& net, const cv::Mat& bgr, const Eigen::Vector4d& box) {
+Eigen::VectorXf embed_crop(cv::dnn::Net& net, const OnnxRewrites& rewrites, const cv::Mat& bgr,
+                           const Eigen::Vector4d& box) {
   const double x0 = std::clamp(box[0], 0.0, static_cast<double>(bgr.cols));
   const double y0 = std::clamp(box[1], 0.0, static_cast<double>(bgr.rows));
   const double x1 = std::clamp(box[2], 0.0, static_cast<double>(bgr.cols));
@@ -53,8 +56,9 @@ Eigen::VectorXf embed_crop(cv::dnn::Net& net, const cv::Mat& bgr, const Eigen::V
   crop.convertTo(input, CV_32FC3, 1.0 / 255.0);
   cv::subtract(input, kMean, input);
   cv::divide(input, kStd, input);
-  net.setInput(cv::dnn::blobFromImage(input));  // 1 x 3 x 256 x 128
-  const cv::Mat out = net.forward();
+  net.setInput(rewrites.prepare_input(cv::dnn::blobFromImage(input)));  // 1 x 3 x 256 x 128
+  const std::string output = net.getUnconnectedOutLayersNames().front();
+  const cv::Mat out = rewrites.restore_output(output, net.forward(output));
   if (out.total() != static_cast<size_t>(Embedder::kDimension))
     throw std::runtime_error("Embedder: expected a " + std::to_string(Embedder::kDimension) + "-d output, got " +
                              std::to_string(out.total()));
@@ -67,7 +71,7 @@ Eigen::VectorXf embed_crop(cv::dnn::Net& net, const cv::Mat& bgr, const Eigen::V
 }  // namespace
 
 Eigen::VectorXf Embedder::embed(const cv::Mat& image, const Eigen::Vector4d& box) {
-  return embed_crop(nets_.front(), to_bgr8(image), box);
+  return embed_crop(nets_.front(), rewrites_, to_bgr8(image), box);
 }
 
 std::vector<Eigen::VectorXf> Embedder::embed_all(const cv::Mat& image, const std::vector<Eigen::Vector4d>& boxes) {
@@ -83,7 +87,7 @@ std::vector<Eigen::VectorXf> Embedder::embed_all(const cv::Mat& image, const std
     try {
       for (size_t i = next++; i < boxes.size(); i = next++) {
         try {
-          out[i] = embed_crop(nets_[k], bgr, boxes[i]);
+          out[i] = embed_crop(nets_[k], rewrites_, bgr, boxes[i]);
         } catch (const std::invalid_argument&) {
           out[i].resize(0);  // a sliver: no appearance
         }

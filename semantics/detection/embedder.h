@@ -8,6 +8,8 @@
 #include <opencv2/dnn.hpp>
 #include <vector>
 
+#include "semantics/detection/onnx_net.h"
+
 namespace wardmap::semantics {
 
 class Embedder {
@@ -39,6 +41,7 @@ class Embedder {
 
  private:
   std::vector<cv::dnn::Net> nets_;  // copies of one network: nets_[k] is used by one thread at a time
+  OnnxRewrites rewrites_;           // what load_onnx_net's rewrites ask of the input and output
 };
 
 // Cosine similarity of two L2-normalised embeddings.

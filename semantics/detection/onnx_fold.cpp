@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "semantics/detection/protobuf_wire.h"
+#include "semantics/detection/depthwise_layer.h"
 #include "semantics/detection/silu_layer.h"
 
 namespace wardmap::semantics {
@@ -21,7 +22,7 @@ constexpr std::uint32_t kNodeInput = 1, kNodeOutput = 2, kNodeName = 3, kNodeOpT
 constexpr std::uint32_t kValueInfoName = 1, kValueInfoType = 2;
 constexpr std::uint32_t kTypeTensorType = 1, kTensorTypeElemType = 1, kTensorTypeShape = 2, kShapeDim = 1,
                         kDimValue = 1;
-constexpr std::uint32_t kTensorDataType = 2, kTensorInt32Data = 5, kTensorInt64Data = 7, kTensorName = 8,
+constexpr std::uint32_t kTensorDims = 1, kTensorDataType = 2, kTensorInt32Data = 5, kTensorInt64Data = 7, kTensorName = 8,
                         kTensorRawData = 9;
 constexpr std::uint32_t kAttributeName = 1, kAttributeInt = 3, kAttributeString = 4, kAttributeTensor = 5,
                         kAttributeInts = 8, kAttributeType = 20;
@@ -138,14 +139,14 @@ std::string tensor_value_info(const std::string& name, std::int64_t elem_type, c
   return wire::serialize({wire::bytes_field(kValueInfoName, name), wire::bytes_field(kValueInfoType, type)});
 }
 
-// A model's graph, parsed: its fields, the nodes, the constant integers, the weights' names and the
-// graph outputs.
+// A model's graph, parsed: its fields, the nodes, the constant integers, the weights' names and dims
+// and the graph outputs.
 struct ParsedGraph {
   std::vector<wire::Field> model;
   size_t graph_field = 0;  // the graph's index in `model`
   std::vector<wire::Field> graph;
   Constants constants;
-  std::set<std::string> initializers;
+  std::map<std::string, std::vector<std::int64_t>> initializers;  // name -> dims
   std::vector<Node> nodes;
   std::set<std::string> graph_outputs;
 
@@ -170,8 +171,9 @@ std::optional<ParsedGraph> parse_graph(const std::string& onnx) {
     const wire::Field& f = p.graph[i];
     if (f.type != wire::kLengthDelimited) continue;
     if (f.number == kGraphInitializer) {
-      const std::string name = first_string(wire::parse(f.bytes), kTensorName);
-      p.initializers.insert(name);
+      const std::vector<wire::Field> tensor = wire::parse(f.bytes);
+      const std::string name = first_string(tensor, kTensorName);
+      p.initializers[name] = wire::varints(tensor, kTensorDims);
       if (auto values = tensor_integers(f.bytes)) p.constants[name] = std::move(*values);
     } else if (f.number == kGraphOutput) {
       p.graph_outputs.insert(first_string(wire::parse(f.bytes), kValueInfoName));
@@ -260,7 +262,7 @@ std::optional<FoldedModel> fold_space_to_depth_input(const std::string& onnx) {
   std::optional<ParsedGraph> parsed = parse_graph(onnx);
   if (!parsed) return std::nullopt;
   std::vector<wire::Field>& graph = parsed->graph;
-  const std::set<std::string>& initializers = parsed->initializers;
+  const auto& initializers = parsed->initializers;
   const Constants& constants = parsed->constants;
   const std::vector<Node>& nodes = parsed->nodes;
   const std::set<std::string>& graph_outputs = parsed->graph_outputs;
@@ -509,6 +511,65 @@ cv::Mat transpose_output(const cv::Mat& output) {
     cv::transpose(from, to);
   }
   return out;
+}
+
+namespace {
+
+// A Conv of one tensor by a constant C x 1 x 3 x 3 weight (and an optional constant bias of C) in C
+// groups, stride 1, no dilation, one pixel of padding on each side: C, else 0.
+std::int64_t depthwise_conv3x3_channels(const Node& n, const ParsedGraph& p) {
+  if (n.op != "Conv" || n.inputs.size() < 2 || n.inputs.size() > 3 || n.outputs.size() != 1) return 0;
+  const auto weight = p.initializers.find(n.inputs[1]);
+  if (weight == p.initializers.end()) return 0;
+  const std::vector<std::int64_t>& w = weight->second;
+  if (w.size() != 4 || w[0] < 1 || w[1] != 1 || w[2] != 3 || w[3] != 3) return 0;
+  const std::int64_t channels = w[0];
+  if (n.inputs.size() == 3) {
+    const auto bias = p.initializers.find(n.inputs[2]);
+    if (bias == p.initializers.end() || bias->second != std::vector<std::int64_t>{channels}) return 0;
+  }
+  bool grouped = false, padded = false;
+  for (const auto& a : n.attributes) {
+    const std::string name = first_string(a, kAttributeName);
+    const std::vector<std::int64_t> ints = wire::varints(a, kAttributeInts);
+    const std::vector<std::int64_t> value = wire::varints(a, kAttributeInt);
+    if (name == "group") {
+      if (value != std::vector<std::int64_t>{channels}) return 0;
+      grouped = true;
+    } else if (name == "kernel_shape") {
+      if (ints != std::vector<std::int64_t>{3, 3}) return 0;
+    } else if (name == "strides" || name == "dilations") {
+      if (ints != std::vector<std::int64_t>{1, 1}) return 0;
+    } else if (name == "pads") {
+      if (ints != std::vector<std::int64_t>{1, 1, 1, 1}) return 0;
+      padded = true;
+    } else if (name == "auto_pad") {
+      if (first_string(a, kAttributeString) != "NOTSET") return 0;
+    } else {
+      return 0;
+    }
+  }
+  return grouped && padded ? channels : 0;
+}
+
+}  // namespace
+
+std::optional<std::string> replace_depthwise_convs(const std::string& onnx) {
+  std::optional<ParsedGraph> parsed = parse_graph(onnx);
+  if (!parsed) return std::nullopt;
+  std::map<size_t, wire::Field> replaced;  // graph field -> the node with the new op type
+  for (const Node& n : parsed->nodes) {
+    if (depthwise_conv3x3_channels(n, *parsed) == 0) continue;
+    std::vector<wire::Field> f;
+    for (const std::string& in : n.inputs) f.push_back(wire::bytes_field(kNodeInput, in));
+    f.push_back(wire::bytes_field(kNodeOutput, n.outputs[0]));
+    const std::string name = first_string(wire::parse(parsed->graph[n.field].bytes), kNodeName);
+    if (!name.empty()) f.push_back(wire::bytes_field(kNodeName, name));
+    f.push_back(wire::bytes_field(kNodeOpType, kDepthwiseOpType));
+    replaced[n.field] = wire::bytes_field(kGraphNode, wire::serialize(f));
+  }
+  if (replaced.empty()) return std::nullopt;
+  return rewrite_graph(*parsed, {}, {}, std::move(replaced));
 }
 
 }  // namespace wardmap::semantics

@@ -3,7 +3,8 @@
 // instead of by cv::dnn. OpenCV 4.6 spends about 10 ms of YOLOX-nano's 50 ms at 416x416 in those
 // eight Slice layers (Net::getPerfProfile, 2 threads); the same rearrangement is a copy of the input.
 // The network itself is unchanged from the Concat on: its output is bit for bit the same.
-// Also SiLU (x * sigmoid(x)) fused into one node that silu_layer.h runs.
+// Also SiLU (x * sigmoid(x)) fused into one node that silu_layer.h runs, and other rewrites for speed
+// that cv::dnn 4.6 makes worthwhile (below).
 #pragma once
 
 #include <array>
@@ -54,6 +55,14 @@ std::optional<std::string> fuse_silu(const std::string& onnx);
 // comparisons. Returns nullopt when the model has no such set. Throws std::runtime_error when the
 // bytes are not a protobuf message.
 std::optional<std::string> cascade_max_pools(const std::string& onnx);
+
+// `onnx`: the bytes of an ONNX ModelProto. Each 3 x 3 depthwise Conv (constant C x 1 x 3 x 3 weights
+// in C groups, an optional constant bias, stride 1, no dilation, one pixel of padding: OSNet's
+// LightConv3x3) gets the op type kDepthwiseOpType (depthwise_layer.h; register_depthwise_layer()
+// before loading the result), its inputs and name unchanged. The output then differs from the
+// original model's by float rounding. Returns nullopt when the model has no such Conv. Throws
+// std::runtime_error when the bytes are not a protobuf message.
+std::optional<std::string> replace_depthwise_convs(const std::string& onnx);
 
 struct FoldedOutputs {
   std::string onnx;                  // the rewritten ModelProto

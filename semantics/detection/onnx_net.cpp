@@ -7,6 +7,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "semantics/detection/depthwise_layer.h"
 #include "semantics/detection/silu_layer.h"
 #include "slam/core/errors.h"
 
@@ -50,7 +51,7 @@ cv::Mat OnnxRewrites::restore_output(const std::string& name, const cv::Mat& out
 }
 
 cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint,
-                           OnnxRewrites& rewrites) {
+                           OnnxRewrites& rewrites, bool depthwise_convs) {
   rewrites = OnnxRewrites();
   if (!std::filesystem::is_regular_file(file)) throw InputError(file.string(), missing_hint);
   std::ifstream in(file, std::ios::binary);
@@ -58,13 +59,14 @@ cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string&
   if (!in && !in.eof()) throw InputError(file.string(), "cannot read the ONNX model");
   // Each rewrite reads the last one's model (or the file's bytes).
   std::optional<FoldedModel> folded_input;
-  std::optional<std::string> fused, cascaded;
+  std::optional<std::string> fused, cascaded, depthwise;
   std::optional<FoldedOutputs> folded_outputs;
   const std::string* model = &bytes;
   try {
     if ((folded_input = fold_space_to_depth_input(*model))) model = &folded_input->onnx;
     if ((fused = fuse_silu(*model))) model = &*fused;
     if ((cascaded = cascade_max_pools(*model))) model = &*cascaded;
+    if (depthwise_convs && (depthwise = replace_depthwise_convs(*model))) model = &*depthwise;
     if ((folded_outputs = fold_output_transposes(*model))) model = &folded_outputs->onnx;
   } catch (const std::runtime_error& ex) {
     throw InputError(file.string(), std::string("not an ONNX model: ") + ex.what());
@@ -72,6 +74,7 @@ cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string&
   if (model == &bytes) return net_from_bytes(bytes, file);
   try {
     if (fused) register_silu_layer();
+    if (depthwise) register_depthwise_layer();
     cv::dnn::Net net = on_cpu(cv::dnn::readNetFromONNX(model->data(), model->size()), file);
     if (folded_input) rewrites.input = std::move(folded_input->input);
     if (folded_outputs) rewrites.transposed_outputs = folded_outputs->outputs;

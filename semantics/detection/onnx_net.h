@@ -29,10 +29,13 @@ struct OnnxRewrites {
 // The same, with the model rewritten for speed when it allows (onnx_fold.h): a strided-slice input
 // stage folded out of the graph, SiLU activations fused into one layer each (fuse_silu,
 // silu_layer.h; the outputs then differ from the original model's by float rounding), max pools
-// side by side on one tensor (SPP) chained, and outputs' final Transposes left to the caller.
-// `rewrites` says what the caller must do about them; it is left empty when the model is loaded
-// as it is.
+// side by side on one tensor (SPP) chained, outputs' final Transposes left to the caller, and, when
+// `depthwise_convs`, 3 x 3 depthwise convolutions run by depthwise_layer.h (replace_depthwise_convs;
+// float rounding again). That last one is the embedder's: OSNet x0.25's forward 13.9 -> 10.0 ms on
+// one thread, while YOLOX-nano's larger depthwise planes gain 1-3 % (49.0 -> 47.6 ms) for outputs
+// 2e-4 off (2026-12-01). `rewrites` says what the caller must do about them; it is left empty when
+// the model is loaded as it is.
 cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint,
-                           OnnxRewrites& rewrites);
+                           OnnxRewrites& rewrites, bool depthwise_convs = false);
 
 }  // namespace wardmap::semantics

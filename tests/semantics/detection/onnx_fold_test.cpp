@@ -11,7 +11,10 @@
 #include <iterator>
 #include <opencv2/dnn.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
+#include "semantics/detection/depthwise_layer.h"
+#include "semantics/detection/embedder.h"
 #include "semantics/detection/letterbox.h"
 #include "semantics/detection/model_description.h"
 #include "semantics/detection/model_search.h"
@@ -454,6 +457,145 @@ TEST(OnnxFold, YoloxNanoRewrittenGivesTheSameOutput) {
                              (lb.canvas.width / 32) * (lb.canvas.height / 32));
     EXPECT_LE(cv::norm(a.reshape(1, 1), b.reshape(1, 1), cv::NORM_INF), 1e-4);
   }
+}
+
+std::string float_tensor(const std::string& name, const std::vector<std::int64_t>& dims, const std::vector<float>& values) {
+  std::vector<wire::Field> f;
+  for (std::int64_t d : dims) f.push_back(varint_field(1, static_cast<std::uint64_t>(d)));
+  f.push_back(varint_field(2, 1));  // FLOAT
+  f.push_back(bytes_field(8, name));
+  f.push_back(bytes_field(9, std::string(reinterpret_cast<const char*>(values.data()), 4 * values.size())));
+  return serialize(f);
+}
+
+struct DepthwiseSpec {
+  int channels = 3, kernel = 3, stride = 1, pad = 1;
+  int group = 3;          // = channels: depthwise
+  bool bias = true;
+  bool relu = true;       // a Relu after it (fused into the layer)
+  bool weight_is_input = false;  // the weights a graph input, not a constant
+};
+
+// x (1 x C x 5 x 7) -> Conv (C groups, the spec's kernel, stride and padding) -> [Relu] -> y.
+std::string depthwise_model(const DepthwiseSpec& spec, unsigned seed = 1) {
+  std::vector<wire::Field> g;
+  cv::RNG rng(seed);
+  const int in_per_group = spec.channels / spec.group;
+  std::vector<float> w(static_cast<size_t>(spec.channels * in_per_group * spec.kernel * spec.kernel)), b(spec.channels);
+  for (float& v : w) v = static_cast<float>(rng.uniform(-1.0, 1.0));
+  for (float& v : b) v = static_cast<float>(rng.uniform(-1.0, 1.0));
+  if (!spec.weight_is_input)
+    g.push_back(bytes_field(5, float_tensor("w", {spec.channels, in_per_group, spec.kernel, spec.kernel}, w)));
+  if (spec.bias) g.push_back(bytes_field(5, float_tensor("b", {spec.channels}, b)));
+  std::vector<std::string> in = {"x", "w"};
+  if (spec.bias) in.push_back("b");
+  const std::string conv_out = spec.relu ? "c" : "y";
+  g.push_back(bytes_field(1, node("Conv", in, {conv_out},
+                                  {int_attribute("group", spec.group), ints_attribute("kernel_shape", {spec.kernel, spec.kernel}),
+                                   ints_attribute("pads", {spec.pad, spec.pad, spec.pad, spec.pad}),
+                                   ints_attribute("strides", {spec.stride, spec.stride})})));
+  if (spec.relu) g.push_back(bytes_field(1, node("Relu", {"c"}, {"y"})));
+  g.push_back(bytes_field(2, "depthwise_test"));
+  g.push_back(bytes_field(11, float_value("x", {1, spec.channels, 5, 7})));
+  if (spec.weight_is_input)
+    g.push_back(bytes_field(11, float_value("w", {spec.channels, in_per_group, spec.kernel, spec.kernel})));
+  const int oh = (5 + 2 * spec.pad - spec.kernel) / spec.stride + 1, ow = (7 + 2 * spec.pad - spec.kernel) / spec.stride + 1;
+  g.push_back(bytes_field(12, float_value("y", {1, spec.channels, oh, ow})));
+  const std::string opset = serialize({bytes_field(1, ""), varint_field(2, 11)});
+  return serialize(
+      {varint_field(1, 7), bytes_field(2, "wardmap-test"), bytes_field(7, serialize(g)), bytes_field(8, opset)});
+}
+
+TEST(Depthwise, KernelMatchesTheDefinition) {
+  cv::RNG rng(7);
+  for (const auto& [h, w] : std::vector<std::pair<int, int>>{{1, 1}, {1, 5}, {4, 1}, {2, 2}, {7, 9}, {16, 33}}) {
+    std::vector<float> src(static_cast<size_t>(h * w)), k(9), padded(static_cast<size_t>((h + 2) * (w + 2)), 123.0f);
+    for (float& v : src) v = static_cast<float>(rng.uniform(-3.0, 3.0));
+    for (float& v : k) v = static_cast<float>(rng.uniform(-1.0, 1.0));
+    std::vector<float> dst(static_cast<size_t>(h * w) + 1, -7.0f);
+    depthwise_conv3x3(src.data(), dst.data(), h, w, k.data(), 0.25f, padded.data());
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        double expected = 0.25;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) {
+            const int sy = y + i - 1, sx = x + j - 1;
+            if (sy >= 0 && sy < h && sx >= 0 && sx < w) expected += double{k[3 * i + j]} * src[sy * w + sx];
+          }
+        EXPECT_NEAR(dst[y * w + x], expected, 1e-5) << h << "x" << w << " at " << y << "," << x;
+      }
+    EXPECT_EQ(dst[static_cast<size_t>(h * w)], -7.0f) << "wrote past the end at " << h << "x" << w;
+  }
+}
+
+TEST(OnnxFold, DepthwiseConvsAreReplacedAndTheOutputMatches) {
+  register_depthwise_layer();
+  for (bool bias : {true, false})
+    for (bool relu : {true, false}) {
+      DepthwiseSpec spec;
+      spec.bias = bias;
+      spec.relu = relu;
+      const std::string onnx = depthwise_model(spec);
+      const std::optional<std::string> replaced = replace_depthwise_convs(onnx);
+      ASSERT_TRUE(replaced.has_value()) << bias << relu;
+      EXPECT_EQ(op_types(*replaced).front(), kDepthwiseOpType);
+      const int dims[4] = {1, 3, 5, 7};
+      cv::Mat blob(4, dims, CV_32F);
+      cv::randu(blob, -3.0, 3.0);
+      const cv::Mat reference = forward(onnx, blob), out = forward(*replaced, blob);
+      ASSERT_EQ(out.total(), reference.total());
+      EXPECT_LE(cv::norm(out.reshape(1, 1), reference.reshape(1, 1), cv::NORM_INF), 1e-5) << bias << relu;
+      EXPECT_GT(cv::norm(out.reshape(1, 1), cv::NORM_INF), 0.5);  // not all zero
+      double least = 0;
+      cv::minMaxIdx(out.reshape(1, 1), &least);
+      if (relu) EXPECT_GE(least, 0.0);   // the Relu was applied ...
+      else EXPECT_LT(least, 0.0);        // ... and only where there is one
+    }
+}
+
+TEST(OnnxFold, OtherConvsAreLeftAlone) {
+  DepthwiseSpec strided, dense, five, unpadded, input_weights;
+  strided.stride = 2;
+  dense.group = 1;  // an ordinary convolution
+  five.kernel = 5;
+  five.pad = 2;
+  unpadded.pad = 0;
+  input_weights.weight_is_input = true;
+  for (const DepthwiseSpec& spec : {strided, dense, five, unpadded, input_weights})
+    EXPECT_FALSE(replace_depthwise_convs(depthwise_model(spec)).has_value())
+        << spec.stride << spec.group << spec.kernel << spec.pad << spec.weight_is_input;
+  EXPECT_FALSE(replace_depthwise_convs(focus_model()).has_value());
+  EXPECT_THROW(replace_depthwise_convs("\x0a\x05"
+                                       "ab"),
+               std::runtime_error);  // truncated
+}
+
+TEST(OnnxFold, OsnetRewrittenGivesTheSameEmbedding) {
+  WARDMAP_REQUIRE_MODEL("osnet-x0_25/osnet_x0_25_msmt17.onnx");
+  WARDMAP_REQUIRE_DATA("images");
+  const auto file = wardmap::test::shared_models_dir() / "osnet-x0_25/osnet_x0_25_msmt17.onnx";
+  OnnxRewrites rewrites;
+  cv::dnn::Net rewritten = load_onnx_net(file, "missing", rewrites, /*depthwise_convs=*/true);
+  EXPECT_FALSE(rewrites.input.has_value());
+  EXPECT_TRUE(rewrites.transposed_outputs.empty());
+  cv::dnn::Net original = load_onnx_net(file, "missing");
+  EXPECT_EQ(rewritten.getLayersCount(kDepthwiseOpType), 60);  // OSNet x0.25's LightConv3x3 blocks
+  EXPECT_EQ(original.getLayersCount("Convolution") - rewritten.getLayersCount("Convolution"), 60);
+
+  // A person's crop of bus.jpg through both, and the Embedder (which rewrites) against the original.
+  const cv::Mat image = cv::imread((wardmap::test::shared_data_dir() / "images" / "bus.jpg").string());
+  ASSERT_FALSE(image.empty());
+  cv::Mat crop;
+  cv::resize(image(cv::Rect(50, 400, 200, 500)), crop, cv::Size(128, 256));
+  const cv::Mat blob = cv::dnn::blobFromImage(crop, 1.0 / 255.0, cv::Size(), cv::Scalar(), true);
+  original.setInput(blob);
+  rewritten.setInput(blob);
+  const cv::Mat a = original.forward().clone(), b = rewritten.forward().clone();
+  ASSERT_EQ(a.total(), 512u);
+  ASSERT_EQ(b.total(), 512u);
+  const double largest = cv::norm(a.reshape(1, 1), cv::NORM_INF);
+  EXPECT_GT(largest, 0.1);
+  EXPECT_LE(cv::norm(a.reshape(1, 1), b.reshape(1, 1), cv::NORM_INF), 1e-5 * std::max(1.0, largest));
 }
 
 }  // namespace
