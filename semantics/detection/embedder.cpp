@@ -57,8 +57,12 @@ Eigen::VectorXf embed_crop(cv::dnn::Net& net, const OnnxRewrites& rewrites, cons
   cv::subtract(input, kMean, input);
   cv::divide(input, kStd, input);
   net.setInput(rewrites.prepare_input(cv::dnn::blobFromImage(input)));  // 1 x 3 x 256 x 128
-  const std::string output = net.getUnconnectedOutLayersNames().front();
-  const cv::Mat out = rewrites.restore_output(output, net.forward(output));
+  // A single-output model: its output, put back as the original model gives it when a rewrite
+  // left its final Transpose out (transposed_outputs names graph outputs).
+  const cv::Mat out = rewrites.transposed_outputs.empty()
+                          ? net.forward()
+                          : rewrites.restore_output(rewrites.transposed_outputs.front(),
+                                                    net.forward(rewrites.transposed_outputs.front()));
   if (out.total() != static_cast<size_t>(Embedder::kDimension))
     throw std::runtime_error("Embedder: expected a " + std::to_string(Embedder::kDimension) + "-d output, got " +
                              std::to_string(out.total()));

@@ -6,8 +6,8 @@
 #include <set>
 #include <stdexcept>
 
-#include "semantics/detection/protobuf_wire.h"
 #include "semantics/detection/depthwise_layer.h"
+#include "semantics/detection/protobuf_wire.h"
 #include "semantics/detection/silu_layer.h"
 
 namespace wardmap::semantics {
@@ -22,8 +22,8 @@ constexpr std::uint32_t kNodeInput = 1, kNodeOutput = 2, kNodeName = 3, kNodeOpT
 constexpr std::uint32_t kValueInfoName = 1, kValueInfoType = 2;
 constexpr std::uint32_t kTypeTensorType = 1, kTensorTypeElemType = 1, kTensorTypeShape = 2, kShapeDim = 1,
                         kDimValue = 1;
-constexpr std::uint32_t kTensorDims = 1, kTensorDataType = 2, kTensorInt32Data = 5, kTensorInt64Data = 7, kTensorName = 8,
-                        kTensorRawData = 9;
+constexpr std::uint32_t kTensorDims = 1, kTensorDataType = 2, kTensorInt32Data = 5, kTensorInt64Data = 7,
+                        kTensorName = 8, kTensorRawData = 9;
 constexpr std::uint32_t kAttributeName = 1, kAttributeInt = 3, kAttributeString = 4, kAttributeTensor = 5,
                         kAttributeInts = 8, kAttributeType = 20;
 constexpr std::uint64_t kAttributeTypeInts = 7;
