@@ -9,6 +9,7 @@
 #include "semantics/detection/depthwise_layer.h"
 #include "semantics/detection/protobuf_wire.h"
 #include "semantics/detection/silu_layer.h"
+#include "semantics/detection/small_conv_layer.h"
 
 namespace wardmap::semantics {
 
@@ -515,61 +516,94 @@ cv::Mat transpose_output(const cv::Mat& output) {
 
 namespace {
 
-// A Conv of one tensor by a constant C x 1 x 3 x 3 weight (and an optional constant bias of C) in C
-// groups, stride 1, no dilation, one pixel of padding on each side: C, else 0.
-std::int64_t depthwise_conv3x3_channels(const Node& n, const ParsedGraph& p) {
-  if (n.op != "Conv" || n.inputs.size() < 2 || n.inputs.size() > 3 || n.outputs.size() != 1) return 0;
-  const auto weight = p.initializers.find(n.inputs[1]);
-  if (weight == p.initializers.end()) return 0;
-  const std::vector<std::int64_t>& w = weight->second;
-  if (w.size() != 4 || w[0] < 1 || w[1] != 1 || w[2] != 3 || w[3] != 3) return 0;
-  const std::int64_t channels = w[0];
-  if (n.inputs.size() == 3) {
-    const auto bias = p.initializers.find(n.inputs[2]);
-    if (bias == p.initializers.end() || bias->second != std::vector<std::int64_t>{channels}) return 0;
-  }
-  bool grouped = false, padded = false;
+// A Conv's attributes when its stride and dilation are 1 (or absent) and its padding is the same on
+// every side: the group count (1 when absent), the kernel side (0 when absent) and the padding
+// (nullopt when absent). Nullopt for any other attribute or value.
+struct UnitStrideConv {
+  std::int64_t group = 1, kernel = 0;
+  std::optional<std::int64_t> pad;
+};
+std::optional<UnitStrideConv> unit_stride_conv(const Node& n) {
+  UnitStrideConv c;
   for (const auto& a : n.attributes) {
     const std::string name = first_string(a, kAttributeName);
     const std::vector<std::int64_t> ints = wire::varints(a, kAttributeInts);
     const std::vector<std::int64_t> value = wire::varints(a, kAttributeInt);
     if (name == "group") {
-      if (value != std::vector<std::int64_t>{channels}) return 0;
-      grouped = true;
+      if (value.size() != 1) return std::nullopt;
+      c.group = value[0];
     } else if (name == "kernel_shape") {
-      if (ints != std::vector<std::int64_t>{3, 3}) return 0;
+      if (ints.size() != 2 || ints[0] != ints[1]) return std::nullopt;
+      c.kernel = ints[0];
     } else if (name == "strides" || name == "dilations") {
-      if (ints != std::vector<std::int64_t>{1, 1}) return 0;
+      if (ints != std::vector<std::int64_t>{1, 1}) return std::nullopt;
     } else if (name == "pads") {
-      if (ints != std::vector<std::int64_t>{1, 1, 1, 1}) return 0;
-      padded = true;
+      if (ints.size() != 4 || ints[1] != ints[0] || ints[2] != ints[0] || ints[3] != ints[0]) return std::nullopt;
+      c.pad = ints[0];
     } else if (name == "auto_pad") {
-      if (first_string(a, kAttributeString) != "NOTSET") return 0;
+      if (first_string(a, kAttributeString) != "NOTSET") return std::nullopt;
     } else {
-      return 0;
+      return std::nullopt;
     }
   }
-  return grouped && padded ? channels : 0;
+  return c;
 }
 
-}  // namespace
+// The dims of a 3 x 3 Conv's constant weight (Cout x Cin/group x 3 x 3) when the Conv reads one
+// tensor, has stride 1, no dilation, one pixel of padding on each side and an optional constant
+// bias of Cout values; else nullopt. `group`: its group count.
+std::optional<std::vector<std::int64_t>> padded_conv3x3_weight(const Node& n, const ParsedGraph& p,
+                                                                std::int64_t& group) {
+  if (n.op != "Conv" || n.inputs.size() < 2 || n.inputs.size() > 3 || n.outputs.size() != 1) return std::nullopt;
+  const auto weight = p.initializers.find(n.inputs[1]);
+  if (weight == p.initializers.end()) return std::nullopt;
+  const std::vector<std::int64_t>& w = weight->second;
+  if (w.size() != 4 || w[0] < 1 || w[1] < 1 || w[2] != 3 || w[3] != 3) return std::nullopt;
+  if (n.inputs.size() == 3) {
+    const auto bias = p.initializers.find(n.inputs[2]);
+    if (bias == p.initializers.end() || bias->second != std::vector<std::int64_t>{w[0]}) return std::nullopt;
+  }
+  const std::optional<UnitStrideConv> c = unit_stride_conv(n);
+  if (!c || (c->kernel != 0 && c->kernel != 3) || c->pad != 1) return std::nullopt;
+  group = c->group;
+  return w;
+}
 
-std::optional<std::string> replace_depthwise_convs(const std::string& onnx) {
+// The model with every Conv that `takes` gets op type `op_type`, its inputs and name unchanged;
+// nullopt when there is none.
+template <typename Takes>
+std::optional<std::string> retype_convs(const std::string& onnx, const char* op_type, Takes takes) {
   std::optional<ParsedGraph> parsed = parse_graph(onnx);
   if (!parsed) return std::nullopt;
   std::map<size_t, wire::Field> replaced;  // graph field -> the node with the new op type
   for (const Node& n : parsed->nodes) {
-    if (depthwise_conv3x3_channels(n, *parsed) == 0) continue;
+    std::int64_t group = 0;
+    const std::optional<std::vector<std::int64_t>> w = padded_conv3x3_weight(n, *parsed, group);
+    if (!w || !takes(*w, group)) continue;
     std::vector<wire::Field> f;
     for (const std::string& in : n.inputs) f.push_back(wire::bytes_field(kNodeInput, in));
     f.push_back(wire::bytes_field(kNodeOutput, n.outputs[0]));
     const std::string name = first_string(wire::parse(parsed->graph[n.field].bytes), kNodeName);
     if (!name.empty()) f.push_back(wire::bytes_field(kNodeName, name));
-    f.push_back(wire::bytes_field(kNodeOpType, kDepthwiseOpType));
+    f.push_back(wire::bytes_field(kNodeOpType, op_type));
     replaced[n.field] = wire::bytes_field(kGraphNode, wire::serialize(f));
   }
   if (replaced.empty()) return std::nullopt;
   return rewrite_graph(*parsed, {}, {}, std::move(replaced));
+}
+
+}  // namespace
+
+std::optional<std::string> replace_depthwise_convs(const std::string& onnx) {
+  // C x 1 x 3 x 3 weights in C groups.
+  return retype_convs(onnx, kDepthwiseOpType,
+                      [](const std::vector<std::int64_t>& w, std::int64_t group) { return w[1] == 1 && group == w[0]; });
+}
+
+std::optional<std::string> replace_small_input_convs(const std::string& onnx) {
+  return retype_convs(onnx, kSmallConvOpType, [](const std::vector<std::int64_t>& w, std::int64_t group) {
+    return group == 1 && w[1] <= kSmallConvMaxInputs && w[0] % kSmallConvBlock == 0;
+  });
 }
 
 }  // namespace wardmap::semantics

@@ -64,6 +64,15 @@ std::optional<std::string> cascade_max_pools(const std::string& onnx);
 // std::runtime_error when the bytes are not a protobuf message.
 std::optional<std::string> replace_depthwise_convs(const std::string& onnx);
 
+// `onnx`: the bytes of an ONNX ModelProto. Each 3 x 3 Conv of one group with at most
+// kSmallConvMaxInputs input channels and a multiple of kSmallConvBlock output channels (constant
+// weights, an optional constant bias, stride 1, no dilation, one pixel of padding: YOLOX's stem
+// after the Focus fold, 12 -> 16 channels) gets the op type kSmallConvOpType (small_conv_layer.h;
+// register_small_conv_layer() before loading the result), its inputs and name unchanged. The output
+// then differs from the original model's by float rounding. Returns nullopt when the model has no
+// such Conv. Throws std::runtime_error when the bytes are not a protobuf message.
+std::optional<std::string> replace_small_input_convs(const std::string& onnx);
+
 struct FoldedOutputs {
   std::string onnx;                  // the rewritten ModelProto
   std::vector<std::string> outputs;  // the graph outputs that now come out B x C x N instead of B x N x C

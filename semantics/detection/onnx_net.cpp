@@ -9,6 +9,7 @@
 
 #include "semantics/detection/depthwise_layer.h"
 #include "semantics/detection/silu_layer.h"
+#include "semantics/detection/small_conv_layer.h"
 #include "slam/core/errors.h"
 
 namespace wardmap::semantics {
@@ -59,7 +60,7 @@ cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string&
   if (!in && !in.eof()) throw InputError(file.string(), "cannot read the ONNX model");
   // Each rewrite reads the last one's model (or the file's bytes).
   std::optional<FoldedModel> folded_input;
-  std::optional<std::string> fused, cascaded, depthwise;
+  std::optional<std::string> fused, cascaded, depthwise, small;
   std::optional<FoldedOutputs> folded_outputs;
   const std::string* model = &bytes;
   try {
@@ -67,6 +68,7 @@ cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string&
     if ((fused = fuse_silu(*model))) model = &*fused;
     if ((cascaded = cascade_max_pools(*model))) model = &*cascaded;
     if (depthwise_convs && (depthwise = replace_depthwise_convs(*model))) model = &*depthwise;
+    if ((small = replace_small_input_convs(*model))) model = &*small;
     if ((folded_outputs = fold_output_transposes(*model))) model = &folded_outputs->onnx;
   } catch (const std::runtime_error& ex) {
     throw InputError(file.string(), std::string("not an ONNX model: ") + ex.what());
@@ -75,6 +77,7 @@ cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string&
   try {
     if (fused) register_silu_layer();
     if (depthwise) register_depthwise_layer();
+    if (small) register_small_conv_layer();
     cv::dnn::Net net = on_cpu(cv::dnn::readNetFromONNX(model->data(), model->size()), file);
     if (folded_input) rewrites.input = std::move(folded_input->input);
     if (folded_outputs) rewrites.transposed_outputs = folded_outputs->outputs;

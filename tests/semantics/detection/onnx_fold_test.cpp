@@ -21,6 +21,7 @@
 #include "semantics/detection/onnx_net.h"
 #include "semantics/detection/protobuf_wire.h"
 #include "semantics/detection/silu_layer.h"
+#include "semantics/detection/small_conv_layer.h"
 #include "tests/semantics/detection/detection_test_support.h"
 
 namespace wardmap::semantics {
@@ -439,6 +440,9 @@ TEST(OnnxFold, YoloxNanoRewrittenGivesTheSameOutput) {
   const int silus = folded.getLayersCount(kSiluOpType);
   EXPECT_GT(silus, 50);
   EXPECT_EQ(silus, original.getLayersCount("Sigmoid") - folded.getLayersCount("Sigmoid"));
+  // Its stem (12 -> 16 channels after the Focus fold) runs on small_conv_layer.h; no other conv.
+  EXPECT_EQ(folded.getLayersCount(kSmallConvOpType), 1);
+  EXPECT_EQ(original.getLayersCount("Convolution") - folded.getLayersCount("Convolution"), 1);
 
   ModelDescription model = load_model_description(model_descriptions_dir() / "yolox-nano.yaml");
   const cv::Mat image = cv::imread((wardmap::test::shared_data_dir() / "images" / "bus.jpg").string());
@@ -476,7 +480,7 @@ struct DepthwiseSpec {
   bool weight_is_input = false;  // the weights a graph input, not a constant
 };
 
-// x (1 x C x 5 x 7) -> Conv (C groups, the spec's kernel, stride and padding) -> [Relu] -> y.
+// x (1 x C x 5 x 7) -> Conv (C -> C channels in the spec's groups, kernel, stride and padding) -> [Relu] -> y.
 std::string depthwise_model(const DepthwiseSpec& spec, unsigned seed = 1) {
   std::vector<wire::Field> g;
   cv::RNG rng(seed);
@@ -596,6 +600,84 @@ TEST(OnnxFold, OsnetRewrittenGivesTheSameEmbedding) {
   const double largest = cv::norm(a.reshape(1, 1), cv::NORM_INF);
   EXPECT_GT(largest, 0.1);
   EXPECT_LE(cv::norm(a.reshape(1, 1), b.reshape(1, 1), cv::NORM_INF), 1e-5 * std::max(1.0, largest));
+}
+
+TEST(SmallConv, KernelMatchesTheDefinition) {
+  // Widths below, at and above a vector (4 or 8 lanes) and its multiples; two output blocks.
+  cv::RNG rng(11);
+  for (const auto& [h, w, cin] : std::vector<std::array<int, 3>>{{1, 1, 1}, {3, 5, 2}, {4, 8, 12}, {5, 17, 3}, {6, 9, 16}}) {
+    const int cout = 16, stride = w + 2 + 8;
+    std::vector<float> src(static_cast<size_t>(cin * h * w)), weights(static_cast<size_t>(cout * cin * 9)), bias(cout);
+    for (float& v : src) v = static_cast<float>(rng.uniform(-3.0, 3.0));
+    for (float& v : weights) v = static_cast<float>(rng.uniform(-1.0, 1.0));
+    for (float& v : bias) v = static_cast<float>(rng.uniform(-1.0, 1.0));
+    std::vector<float> padded(static_cast<size_t>(cin * (h + 2) * stride), 0.0f);
+    for (int c = 0; c < cin; ++c)
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) padded[(static_cast<size_t>(c) * (h + 2) + y + 1) * stride + x + 1] = src[(c * h + y) * w + x];
+    std::vector<float> dst(static_cast<size_t>(cout * h * w) + 1, -7.0f);
+    // In two row ranges, as cv::dnn's threads would.
+    small_input_conv3x3(padded.data(), cin, cout, h, w, stride, weights.data(), bias.data(), dst.data(), 0, h / 2);
+    small_input_conv3x3(padded.data(), cin, cout, h, w, stride, weights.data(), bias.data(), dst.data(), h / 2, h);
+    for (int o = 0; o < cout; ++o)
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          double expected = bias[o];
+          for (int c = 0; c < cin; ++c)
+            for (int i = 0; i < 3; ++i)
+              for (int j = 0; j < 3; ++j) {
+                const int sy = y + i - 1, sx = x + j - 1;
+                if (sy >= 0 && sy < h && sx >= 0 && sx < w)
+                  expected += double{weights[((o * cin + c) * 3 + i) * 3 + j]} * src[(c * h + sy) * w + sx];
+              }
+          EXPECT_NEAR(dst[(o * h + y) * w + x], expected, 1e-4) << h << "x" << w << " cin " << cin << " at " << o << ","
+                                                                << y << "," << x;
+        }
+    EXPECT_EQ(dst[static_cast<size_t>(cout * h * w)], -7.0f) << "wrote past the end at " << h << "x" << w;
+  }
+}
+
+TEST(OnnxFold, SmallInputConvsAreReplacedAndTheOutputMatches) {
+  register_small_conv_layer();
+  for (bool bias : {true, false})
+    for (bool relu : {true, false}) {
+      DepthwiseSpec spec;  // a dense 8 -> 8 channel convolution
+      spec.channels = 8;
+      spec.group = 1;
+      spec.bias = bias;
+      spec.relu = relu;
+      const std::string onnx = depthwise_model(spec);
+      EXPECT_FALSE(replace_depthwise_convs(onnx).has_value());
+      const std::optional<std::string> replaced = replace_small_input_convs(onnx);
+      ASSERT_TRUE(replaced.has_value()) << bias << relu;
+      EXPECT_EQ(op_types(*replaced).front(), kSmallConvOpType);
+      const int dims[4] = {1, 8, 5, 7};
+      cv::Mat blob(4, dims, CV_32F);
+      cv::randu(blob, -3.0, 3.0);
+      const cv::Mat reference = forward(onnx, blob), out = forward(*replaced, blob);
+      ASSERT_EQ(out.total(), reference.total());
+      EXPECT_LE(cv::norm(out.reshape(1, 1), reference.reshape(1, 1), cv::NORM_INF), 1e-4) << bias << relu;
+      EXPECT_GT(cv::norm(out.reshape(1, 1), cv::NORM_INF), 0.5);
+      double least = 0;
+      cv::minMaxIdx(out.reshape(1, 1), &least);
+      if (relu) EXPECT_GE(least, 0.0);
+      else EXPECT_LT(least, 0.0);
+    }
+  // Left alone: depthwise, strided, 5 x 5, unpadded, weights as an input, more than 16 inputs, an
+  // output count that is not a multiple of 8 (3).
+  DepthwiseSpec depthwise, strided, five, unpadded, input_weights, wide, odd;
+  for (DepthwiseSpec* spec : {&strided, &five, &unpadded, &input_weights})
+    spec->channels = 8, spec->group = 1;
+  depthwise.channels = 8, depthwise.group = 8;
+  strided.stride = 2;
+  five.kernel = 5, five.pad = 2;
+  unpadded.pad = 0;
+  input_weights.weight_is_input = true;
+  wide.channels = 24, wide.group = 1;
+  odd.group = 1;
+  for (const DepthwiseSpec& spec : {depthwise, strided, five, unpadded, input_weights, wide, odd})
+    EXPECT_FALSE(replace_small_input_convs(depthwise_model(spec)).has_value())
+        << spec.channels << " " << spec.group << " " << spec.stride << spec.kernel << spec.pad << spec.weight_is_input;
 }
 
 }  // namespace

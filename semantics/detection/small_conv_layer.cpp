@@ -1,0 +1,197 @@
+#include "semantics/detection/small_conv_layer.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <mutex>
+#include <vector>
+
+#include <opencv2/core/utility.hpp>
+#include <opencv2/dnn.hpp>
+#include <opencv2/dnn/all_layers.hpp>
+#include <opencv2/dnn/layer.details.hpp>
+
+namespace wardmap::semantics {
+
+namespace {
+
+// L floats in one register (GCC / Clang vector extensions); Load reads and writes them at any
+// float-aligned address.
+template <int L>
+struct Lanes {
+  typedef float F __attribute__((vector_size(4 * L)));
+  typedef float Load __attribute__((vector_size(4 * L), aligned(4), may_alias));
+};
+
+// small_input_conv3x3 with L pixels a vector: 8 output channels x L pixels of sums in registers,
+// each input value read once per tap. Pure arithmetic on blobs that cv::dnn's TBB workers wrote:
+// left out of ThreadSanitizer's instrumentation (as silu_layer.cpp's kernel).
+template <int L>
+__attribute__((always_inline, no_sanitize("thread"))) inline void conv_rows(const float* padded, int in_channels,
+                                                                            int out_channels, int height, int width,
+                                                                            int stride, const float* weights,
+                                                                            const float* bias, float* dst, int row_begin,
+                                                                            int row_end) {
+  using F = typename Lanes<L>::F;
+  using Load = typename Lanes<L>::Load;
+  const size_t padded_plane = static_cast<size_t>(height + 2) * stride;
+  const size_t plane = static_cast<size_t>(height) * width;
+  const size_t per_output = static_cast<size_t>(in_channels) * 9;
+  for (int o0 = 0; o0 < out_channels; o0 += kSmallConvBlock)
+    for (int y = row_begin; y < row_end; ++y)
+      for (int x = 0; x < width; x += L) {
+        F acc[kSmallConvBlock];
+        for (int j = 0; j < kSmallConvBlock; ++j) acc[j] = F{} + bias[o0 + j];
+        for (int c = 0; c < in_channels; ++c) {
+          const float* in = padded + c * padded_plane + static_cast<size_t>(y) * stride + x;
+          const float* w = weights + static_cast<size_t>(o0) * per_output + static_cast<size_t>(c) * 9;
+          for (int t = 0; t < 9; ++t) {
+            const F v = *reinterpret_cast<const Load*>(in + (t / 3) * stride + t % 3);
+            for (int j = 0; j < kSmallConvBlock; ++j) acc[j] += v * w[j * per_output + t];
+          }
+        }
+        for (int j = 0; j < kSmallConvBlock; ++j) {
+          float* out = dst + (o0 + j) * plane + static_cast<size_t>(y) * width + x;
+          if (x + L <= width) {
+            *reinterpret_cast<Load*>(out) = acc[j];
+          } else {
+            for (int k = 0; k < width - x; ++k) out[k] = acc[j][k];
+          }
+        }
+      }
+}
+
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define WARDMAP_SMALL_CONV_AVX2 1
+__attribute__((target("avx2,fma"), no_sanitize("thread"))) void conv_rows_8(const float* padded, int in_channels,
+                                                                              int out_channels, int height, int width,
+                                                                              int stride, const float* weights,
+                                                                              const float* bias, float* dst,
+                                                                              int row_begin, int row_end) {
+  conv_rows<8>(padded, in_channels, out_channels, height, width, stride, weights, bias, dst, row_begin, row_end);
+}
+#endif
+
+// The input planes of one batch item, each with a zero border of one pixel and rows `stride` long.
+__attribute__((no_sanitize("thread"))) void pad_planes(const float* src, int channels, int height, int width,
+                                                       int stride, float* padded) {
+  std::fill(padded, padded + static_cast<size_t>(channels) * (height + 2) * stride, 0.0f);
+  for (int c = 0; c < channels; ++c)
+    for (int y = 0; y < height; ++y) {
+      const float* in = src + (static_cast<size_t>(c) * height + y) * width;
+      float* row = padded + (static_cast<size_t>(c) * (height + 2) + y + 1) * stride + 1;
+      for (int x = 0; x < width; ++x) row[x] = in[x];
+    }
+}
+
+// blobs[0]: the weights, Cout x Cin x 3 x 3; blobs[1] (optional): the bias, Cout values. Input and
+// output N x Cin x H x W and N x Cout x H x W floats.
+class SmallConvLayer : public cv::dnn::Layer {
+ public:
+  explicit SmallConvLayer(const cv::dnn::LayerParams& params) {
+    setParamsFrom(params);
+    CV_Assert(!blobs.empty() && blobs.size() <= 2 && blobs[0].type() == CV_32F && blobs[0].dims == 4 &&
+              blobs[0].size[2] == 3 && blobs[0].size[3] == 3 && blobs[0].isContinuous());
+    out_channels_ = blobs[0].size[0];
+    in_channels_ = blobs[0].size[1];
+    CV_Assert(out_channels_ % kSmallConvBlock == 0 && in_channels_ >= 1);
+    weights_.assign(blobs[0].ptr<float>(), blobs[0].ptr<float>() + blobs[0].total());
+    bias_.assign(static_cast<size_t>(out_channels_), 0.0f);
+    if (blobs.size() == 2) {
+      CV_Assert(blobs[1].type() == CV_32F && blobs[1].total() == bias_.size() && blobs[1].isContinuous());
+      std::copy(blobs[1].ptr<float>(), blobs[1].ptr<float>() + out_channels_, bias_.begin());
+    }
+  }
+
+  static cv::Ptr<cv::dnn::Layer> create(cv::dnn::LayerParams& params) {
+    return cv::Ptr<cv::dnn::Layer>(new SmallConvLayer(params));
+  }
+
+  bool getMemoryShapes(const std::vector<cv::dnn::MatShape>& inputs, int /*required_outputs*/,
+                       std::vector<cv::dnn::MatShape>& outputs,
+                       std::vector<cv::dnn::MatShape>& /*internals*/) const override {
+    CV_Assert(inputs.size() == 1 && inputs[0].size() == 4 && inputs[0][1] == in_channels_);
+    outputs = inputs;
+    outputs[0][1] = out_channels_;
+    return false;
+  }
+
+  bool setActivation(const cv::Ptr<cv::dnn::ActivationLayer>& layer) override {
+    activation_ = layer;
+    return !activation_.empty();
+  }
+
+  void forward(cv::InputArrayOfArrays inputs_arr, cv::OutputArrayOfArrays outputs_arr,
+               cv::OutputArrayOfArrays /*internals*/) override {
+    std::vector<cv::Mat> inputs, outputs;
+    inputs_arr.getMatVector(inputs);
+    outputs_arr.getMatVector(outputs);
+    CV_Assert(inputs.size() == 1 && outputs.size() == 1);
+    const cv::Mat& in = inputs[0];
+    cv::Mat& out = outputs[0];
+    CV_Assert(in.type() == CV_32F && out.type() == CV_32F && in.dims == 4 && out.dims == 4 && in.isContinuous() &&
+              out.isContinuous() && in.size[1] == in_channels_ && out.size[1] == out_channels_ &&
+              in.size[0] == out.size[0] && in.size[2] == out.size[2] && in.size[3] == out.size[3]);
+    const int height = in.size[2], width = in.size[3];
+    const int stride = width + 2 + 8;
+    std::vector<float> padded(static_cast<size_t>(in_channels_) * (height + 2) * stride);
+    for (int n = 0; n < in.size[0]; ++n) {
+      pad_planes(in.ptr<float>() + static_cast<size_t>(n) * in_channels_ * height * width, in_channels_, height, width,
+                 stride, padded.data());
+      Rows rows(*this, padded.data(), height, width, stride,
+                out.ptr<float>() + static_cast<size_t>(n) * out_channels_ * height * width);
+      cv::parallel_for_(cv::Range(0, height), rows, 8);
+    }
+  }
+
+ private:
+  // Output rows on cv::dnn's threads. Its body reads the layer and the buffers its caller wrote,
+  // through TBB's synchronisation, which ThreadSanitizer cannot see: left out of its
+  // instrumentation.
+  class Rows : public cv::ParallelLoopBody {
+   public:
+    Rows(const SmallConvLayer& layer, const float* padded, int height, int width, int stride, float* dst)
+        : layer_(layer), padded_(padded), height_(height), width_(width), stride_(stride), dst_(dst) {}
+    __attribute__((no_sanitize("thread"))) void operator()(const cv::Range& r) const override {
+      small_input_conv3x3(padded_, layer_.in_channels_, layer_.out_channels_, height_, width_, stride_,
+                          layer_.weights_.data(), layer_.bias_.data(), dst_, r.start, r.end);
+      if (layer_.activation_) {
+        const size_t plane = static_cast<size_t>(height_) * width_;
+        float* first = dst_ + static_cast<size_t>(r.start) * width_;
+        layer_.activation_->forwardSlice(first, first, (r.end - r.start) * width_, plane, 0, layer_.out_channels_);
+      }
+    }
+
+   private:
+    const SmallConvLayer& layer_;
+    const float* padded_;
+    int height_, width_, stride_;
+    float* dst_;
+  };
+
+  int in_channels_ = 0, out_channels_ = 0;
+  std::vector<float> weights_, bias_;
+  cv::Ptr<cv::dnn::ActivationLayer> activation_;
+};
+
+}  // namespace
+
+__attribute__((no_sanitize("thread"))) void small_input_conv3x3(const float* padded, int in_channels,
+                                                                int out_channels, int height, int width,
+                                                                int padded_stride, const float* weights,
+                                                                const float* bias, float* dst, int row_begin,
+                                                                int row_end) {
+#ifdef WARDMAP_SMALL_CONV_AVX2
+  static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  if (avx2)
+    return conv_rows_8(padded, in_channels, out_channels, height, width, padded_stride, weights, bias, dst, row_begin,
+                       row_end);
+#endif
+  conv_rows<4>(padded, in_channels, out_channels, height, width, padded_stride, weights, bias, dst, row_begin, row_end);
+}
+
+void register_small_conv_layer() {
+  static std::once_flag once;
+  std::call_once(once, [] { cv::dnn::LayerFactory::registerLayer(kSmallConvOpType, SmallConvLayer::create); });
+}
+
+}  // namespace wardmap::semantics
