@@ -144,27 +144,32 @@ class SmallConvLayer : public cv::dnn::Layer {
   }
 
  private:
-  // Output rows on cv::dnn's threads. Its body reads the layer and the buffers its caller wrote,
-  // through TBB's synchronisation, which ThreadSanitizer cannot see: left out of its
-  // instrumentation.
+  // Output rows on cv::dnn's threads. Its body reads the buffers its caller wrote, through TBB's
+  // synchronisation, which ThreadSanitizer cannot see: left out of its instrumentation, and given
+  // plain values and pointers (taken on the calling thread), since the inline accessors it would
+  // otherwise call are instrumented.
   class Rows : public cv::ParallelLoopBody {
    public:
     Rows(const SmallConvLayer& layer, const float* padded, int height, int width, int stride, float* dst)
-        : layer_(layer), padded_(padded), height_(height), width_(width), stride_(stride), dst_(dst) {}
+        : padded_(padded), weights_(layer.weights_.data()), bias_(layer.bias_.data()),
+          activation_(layer.activation_.get()), in_channels_(layer.in_channels_),
+          out_channels_(layer.out_channels_), height_(height), width_(width), stride_(stride), dst_(dst) {}
     __attribute__((no_sanitize("thread"))) void operator()(const cv::Range& r) const override {
-      small_input_conv3x3(padded_, layer_.in_channels_, layer_.out_channels_, height_, width_, stride_,
-                          layer_.weights_.data(), layer_.bias_.data(), dst_, r.start, r.end);
-      if (layer_.activation_) {
+      small_input_conv3x3(padded_, in_channels_, out_channels_, height_, width_, stride_, weights_, bias_, dst_,
+                          r.start, r.end);
+      if (activation_) {
         const size_t plane = static_cast<size_t>(height_) * width_;
         float* first = dst_ + static_cast<size_t>(r.start) * width_;
-        layer_.activation_->forwardSlice(first, first, (r.end - r.start) * width_, plane, 0, layer_.out_channels_);
+        activation_->forwardSlice(first, first, (r.end - r.start) * width_, plane, 0, out_channels_);
       }
     }
 
    private:
-    const SmallConvLayer& layer_;
     const float* padded_;
-    int height_, width_, stride_;
+    const float* weights_;
+    const float* bias_;
+    const cv::dnn::ActivationLayer* activation_;
+    int in_channels_, out_channels_, height_, width_, stride_;
     float* dst_;
   };
 
