@@ -5,8 +5,9 @@
 #include <vector>
 
 #include <opencv2/dnn.hpp>
-#include <opencv2/dnn/all_layers.hpp>
 #include <opencv2/dnn/layer.details.hpp>
+
+#include "semantics/detection/conv3x3_layer.h"
 
 namespace wardmap::semantics {
 
@@ -38,52 +39,19 @@ __attribute__((no_sanitize("thread"))) void depthwise_conv3x3(const float* src, 
 
 namespace {
 
-// blobs[0]: the weights, C x 1 x 3 x 3; blobs[1] (optional): the bias, C values. Input and output
-// N x C x H x W floats.
-class DepthwiseLayer : public cv::dnn::Layer {
+// C x 1 x 3 x 3 weights in C groups (conv3x3_layer.h).
+class DepthwiseLayer : public Conv3x3Layer {
  public:
-  explicit DepthwiseLayer(const cv::dnn::LayerParams& params) {
-    setParamsFrom(params);
-    CV_Assert(!blobs.empty() && blobs[0].type() == CV_32F && blobs[0].dims == 4 && blobs[0].size[1] == 1 &&
-              blobs[0].size[2] == 3 && blobs[0].size[3] == 3 && blobs[0].isContinuous());
-    channels_ = blobs[0].size[0];
-    weights_.assign(blobs[0].ptr<float>(), blobs[0].ptr<float>() + 9 * channels_);
-    bias_.assign(static_cast<size_t>(channels_), 0.0f);
-    if (blobs.size() > 1) {
-      CV_Assert(blobs[1].type() == CV_32F && blobs[1].total() == static_cast<size_t>(channels_) &&
-                blobs[1].isContinuous());
-      std::copy(blobs[1].ptr<float>(), blobs[1].ptr<float>() + channels_, bias_.begin());
-    }
-  }
+  explicit DepthwiseLayer(const cv::dnn::LayerParams& params) : Conv3x3Layer(params, /*depthwise=*/true) {}
 
   static cv::Ptr<cv::dnn::Layer> create(cv::dnn::LayerParams& params) {
     return cv::Ptr<cv::dnn::Layer>(new DepthwiseLayer(params));
   }
 
-  bool getMemoryShapes(const std::vector<cv::dnn::MatShape>& inputs, int /*required_outputs*/,
-                       std::vector<cv::dnn::MatShape>& outputs,
-                       std::vector<cv::dnn::MatShape>& /*internals*/) const override {
-    CV_Assert(inputs.size() == 1 && inputs[0].size() == 4 && inputs[0][1] == channels_);
-    outputs = inputs;
-    return false;  // not in place: each output reads its input's neighbours
-  }
-
-  bool setActivation(const cv::Ptr<cv::dnn::ActivationLayer>& layer) override {
-    activation_ = layer;
-    return !activation_.empty();
-  }
-
   void forward(cv::InputArrayOfArrays inputs_arr, cv::OutputArrayOfArrays outputs_arr,
                cv::OutputArrayOfArrays /*internals*/) override {
-    std::vector<cv::Mat> inputs, outputs;
-    inputs_arr.getMatVector(inputs);
-    outputs_arr.getMatVector(outputs);
-    CV_Assert(inputs.size() == 1 && outputs.size() == 1);
-    const cv::Mat& in = inputs[0];
-    cv::Mat& out = outputs[0];
-    CV_Assert(in.type() == CV_32F && out.type() == CV_32F && in.dims == 4 && in.isContinuous() &&
-              out.isContinuous() && in.size == out.size && in.size[1] == channels_);
-    const int planes = in.size[0] * channels_, height = in.size[2], width = in.size[3];
+    auto [in, out] = io_blobs(inputs_arr, outputs_arr);
+    const int planes = in.size[0] * out_channels_, height = in.size[2], width = in.size[3];
     const size_t plane = static_cast<size_t>(height) * width;
     const float* src = in.ptr<float>();
     float* dst = out.ptr<float>();
@@ -91,18 +59,13 @@ class DepthwiseLayer : public cv::dnn::Layer {
     // embedder already runs one network copy per thread.
     std::vector<float> padded(static_cast<size_t>(height + 2) * (width + 2));
     for (int p = 0; p < planes; ++p) {
-      const int c = p % channels_;
+      const int c = p % out_channels_;
       float* out_plane = dst + static_cast<size_t>(p) * plane;
       depthwise_conv3x3(src + static_cast<size_t>(p) * plane, out_plane, height, width,
                         &weights_[9 * static_cast<size_t>(c)], bias_[static_cast<size_t>(c)], padded.data());
       if (activation_) activation_->forwardSlice(out_plane, out_plane, static_cast<int>(plane), plane, c, c + 1);
     }
   }
-
- private:
-  int channels_ = 0;
-  std::vector<float> weights_, bias_;
-  cv::Ptr<cv::dnn::ActivationLayer> activation_;
 };
 
 }  // namespace

@@ -33,8 +33,9 @@ struct OnnxRewrites {
 // `depthwise_convs`, 3 x 3 depthwise convolutions run by depthwise_layer.h (replace_depthwise_convs;
 // float rounding again). That last one is the embedder's: OSNet x0.25's forward 13.9 -> 10.0 ms on
 // one thread, while YOLOX-nano's larger depthwise planes gain 1-3 % (49.0 -> 47.6 ms) for outputs
-// 2e-4 off (2026-12-01). `rewrites` says what the caller must do about them; it is left empty when
-// the model is loaded as it is.
+// 2e-4 off (2026-12-01). Also 3 x 3 convolutions of few input channels (YOLOX's stem) run by
+// small_conv_layer.h (replace_small_input_convs; float rounding). `rewrites` says what the caller
+// must do about them; it is left empty when the model is loaded as it is.
 cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint,
                            OnnxRewrites& rewrites, bool depthwise_convs = false);
 

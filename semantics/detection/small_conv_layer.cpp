@@ -7,8 +7,9 @@
 
 #include <opencv2/core/utility.hpp>
 #include <opencv2/dnn.hpp>
-#include <opencv2/dnn/all_layers.hpp>
 #include <opencv2/dnn/layer.details.hpp>
+
+#include "semantics/detection/conv3x3_layer.h"
 
 namespace wardmap::semantics {
 
@@ -83,54 +84,20 @@ __attribute__((no_sanitize("thread"))) void pad_planes(const float* src, int cha
     }
 }
 
-// blobs[0]: the weights, Cout x Cin x 3 x 3; blobs[1] (optional): the bias, Cout values. Input and
-// output N x Cin x H x W and N x Cout x H x W floats.
-class SmallConvLayer : public cv::dnn::Layer {
+// Cout x Cin x 3 x 3 weights in one group (conv3x3_layer.h).
+class SmallConvLayer : public Conv3x3Layer {
  public:
-  explicit SmallConvLayer(const cv::dnn::LayerParams& params) {
-    setParamsFrom(params);
-    CV_Assert(!blobs.empty() && blobs.size() <= 2 && blobs[0].type() == CV_32F && blobs[0].dims == 4 &&
-              blobs[0].size[2] == 3 && blobs[0].size[3] == 3 && blobs[0].isContinuous());
-    out_channels_ = blobs[0].size[0];
-    in_channels_ = blobs[0].size[1];
-    CV_Assert(out_channels_ % kSmallConvBlock == 0 && in_channels_ >= 1);
-    weights_.assign(blobs[0].ptr<float>(), blobs[0].ptr<float>() + blobs[0].total());
-    bias_.assign(static_cast<size_t>(out_channels_), 0.0f);
-    if (blobs.size() == 2) {
-      CV_Assert(blobs[1].type() == CV_32F && blobs[1].total() == bias_.size() && blobs[1].isContinuous());
-      std::copy(blobs[1].ptr<float>(), blobs[1].ptr<float>() + out_channels_, bias_.begin());
-    }
+  explicit SmallConvLayer(const cv::dnn::LayerParams& params) : Conv3x3Layer(params, /*depthwise=*/false) {
+    CV_Assert(out_channels_ % kSmallConvBlock == 0);
   }
 
   static cv::Ptr<cv::dnn::Layer> create(cv::dnn::LayerParams& params) {
     return cv::Ptr<cv::dnn::Layer>(new SmallConvLayer(params));
   }
 
-  bool getMemoryShapes(const std::vector<cv::dnn::MatShape>& inputs, int /*required_outputs*/,
-                       std::vector<cv::dnn::MatShape>& outputs,
-                       std::vector<cv::dnn::MatShape>& /*internals*/) const override {
-    CV_Assert(inputs.size() == 1 && inputs[0].size() == 4 && inputs[0][1] == in_channels_);
-    outputs = inputs;
-    outputs[0][1] = out_channels_;
-    return false;
-  }
-
-  bool setActivation(const cv::Ptr<cv::dnn::ActivationLayer>& layer) override {
-    activation_ = layer;
-    return !activation_.empty();
-  }
-
   void forward(cv::InputArrayOfArrays inputs_arr, cv::OutputArrayOfArrays outputs_arr,
                cv::OutputArrayOfArrays /*internals*/) override {
-    std::vector<cv::Mat> inputs, outputs;
-    inputs_arr.getMatVector(inputs);
-    outputs_arr.getMatVector(outputs);
-    CV_Assert(inputs.size() == 1 && outputs.size() == 1);
-    const cv::Mat& in = inputs[0];
-    cv::Mat& out = outputs[0];
-    CV_Assert(in.type() == CV_32F && out.type() == CV_32F && in.dims == 4 && out.dims == 4 && in.isContinuous() &&
-              out.isContinuous() && in.size[1] == in_channels_ && out.size[1] == out_channels_ &&
-              in.size[0] == out.size[0] && in.size[2] == out.size[2] && in.size[3] == out.size[3]);
+    auto [in, out] = io_blobs(inputs_arr, outputs_arr);
     const int height = in.size[2], width = in.size[3];
     const int stride = width + 2 + 8;
     std::vector<float> padded(static_cast<size_t>(in_channels_) * (height + 2) * stride);
@@ -173,9 +140,6 @@ class SmallConvLayer : public cv::dnn::Layer {
     float* dst_;
   };
 
-  int in_channels_ = 0, out_channels_ = 0;
-  std::vector<float> weights_, bias_;
-  cv::Ptr<cv::dnn::ActivationLayer> activation_;
 };
 
 }  // namespace
