@@ -7,7 +7,7 @@
 #include <opencv2/dnn.hpp>
 #include <opencv2/dnn/layer.details.hpp>
 
-#include "semantics/detection/conv3x3_layer.h"
+#include "semantics/detection/conv_layer_base.h"
 
 namespace wardmap::semantics {
 
@@ -39,10 +39,12 @@ __attribute__((no_sanitize("thread"))) void depthwise_conv3x3(const float* src, 
 
 namespace {
 
-// C x 1 x 3 x 3 weights in C groups (conv3x3_layer.h).
-class DepthwiseLayer : public Conv3x3Layer {
+// C x 1 x 3 x 3 weights in C groups, stride 1, one pixel of padding (conv_layer_base.h).
+class DepthwiseLayer : public ConvLayerBase {
  public:
-  explicit DepthwiseLayer(const cv::dnn::LayerParams& params) : Conv3x3Layer(params, /*depthwise=*/true) {}
+  explicit DepthwiseLayer(const cv::dnn::LayerParams& params) : ConvLayerBase(params, /*depthwise=*/true) {
+    CV_Assert(kernel_ == 3 && stride_ == 1 && pad_ == 1);
+  }
 
   static cv::Ptr<cv::dnn::Layer> create(cv::dnn::LayerParams& params) {
     return cv::Ptr<cv::dnn::Layer>(new DepthwiseLayer(params));

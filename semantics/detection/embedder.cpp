@@ -27,11 +27,12 @@ const cv::Scalar kStd(0.229, 0.224, 0.225);
 Embedder::Embedder(const std::filesystem::path& onnx_file, int threads) {
   if (threads < 1 || threads > 8)
     throw std::invalid_argument("Embedder: threads must be in [1, 8], got " + std::to_string(threads));
-  // Rewritten for speed (onnx_net.h; OSNet: its 60 depthwise convolutions), the same for every copy.
+  // Rewritten for speed (onnx_net.h; OSNet: its 7 x 7 stem, 60 depthwise and 80-odd 1 x 1
+  // convolutions), the same for every copy.
   for (int k = 0; k < threads; ++k)
     nets_.push_back(load_onnx_net(
         onnx_file, "embedding model not found (models/README.md says where to get OSNet x0.25)", rewrites_,
-        /*depthwise_convs=*/true));
+        /*few_channel_convs=*/true));
 }
 
 namespace {

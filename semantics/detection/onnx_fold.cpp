@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "semantics/detection/depthwise_layer.h"
+#include "semantics/detection/pointwise_layer.h"
 #include "semantics/detection/protobuf_wire.h"
 #include "semantics/detection/silu_layer.h"
 #include "semantics/detection/small_conv_layer.h"
@@ -516,15 +517,15 @@ cv::Mat transpose_output(const cv::Mat& output) {
 
 namespace {
 
-// A Conv's attributes when its stride and dilation are 1 (or absent) and its padding is the same on
-// every side: the group count (1 when absent), the kernel side (0 when absent) and the padding
-// (nullopt when absent). Nullopt for any other attribute or value.
-struct UnitStrideConv {
-  std::int64_t group = 1, kernel = 0;
-  std::optional<std::int64_t> pad;
+// A Conv's attributes when its dilation is 1 (or absent), its stride the same on both axes and its
+// padding the same on every side: the group count (1 when absent), the kernel side (0 when absent),
+// the stride (1 when absent) and the padding (0 when absent). Nullopt for any other attribute or
+// value.
+struct ConvAttributes {
+  std::int64_t group = 1, kernel = 0, stride = 1, pad = 0;
 };
-std::optional<UnitStrideConv> unit_stride_conv(const Node& n) {
-  UnitStrideConv c;
+std::optional<ConvAttributes> conv_attributes(const Node& n) {
+  ConvAttributes c;
   for (const auto& a : n.attributes) {
     const std::string name = first_string(a, kAttributeName);
     const std::vector<std::int64_t> ints = wire::varints(a, kAttributeInts);
@@ -535,10 +536,14 @@ std::optional<UnitStrideConv> unit_stride_conv(const Node& n) {
     } else if (name == "kernel_shape") {
       if (ints.size() != 2 || ints[0] != ints[1]) return std::nullopt;
       c.kernel = ints[0];
-    } else if (name == "strides" || name == "dilations") {
+    } else if (name == "strides") {
+      if (ints.size() != 2 || ints[0] != ints[1] || ints[0] < 1) return std::nullopt;
+      c.stride = ints[0];
+    } else if (name == "dilations") {
       if (ints != std::vector<std::int64_t>{1, 1}) return std::nullopt;
     } else if (name == "pads") {
-      if (ints.size() != 4 || ints[1] != ints[0] || ints[2] != ints[0] || ints[3] != ints[0]) return std::nullopt;
+      if (ints.size() != 4 || ints[1] != ints[0] || ints[2] != ints[0] || ints[3] != ints[0] || ints[0] < 0)
+        return std::nullopt;
       c.pad = ints[0];
     } else if (name == "auto_pad") {
       if (first_string(a, kAttributeString) != "NOTSET") return std::nullopt;
@@ -549,43 +554,49 @@ std::optional<UnitStrideConv> unit_stride_conv(const Node& n) {
   return c;
 }
 
-// The dims of a 3 x 3 Conv's constant weight (Cout x Cin/group x 3 x 3) when the Conv reads one
-// tensor, has stride 1, no dilation, one pixel of padding on each side and an optional constant
-// bias of Cout values; else nullopt. `group`: its group count.
-std::optional<std::vector<std::int64_t>> padded_conv3x3_weight(const Node& n, const ParsedGraph& p,
-                                                                std::int64_t& group) {
+// A square 2-D Conv that reads one tensor with constant weights (Cout x Cin/group x k x k) and an
+// optional constant bias of Cout values, with conv_attributes: the weights' dims and the attributes
+// (the kernel side filled in from the weights); else nullopt.
+struct SquareConv {
+  std::vector<std::int64_t> weight;
+  ConvAttributes attributes;
+};
+std::optional<SquareConv> square_conv(const Node& n, const ParsedGraph& p) {
   if (n.op != "Conv" || n.inputs.size() < 2 || n.inputs.size() > 3 || n.outputs.size() != 1) return std::nullopt;
   const auto weight = p.initializers.find(n.inputs[1]);
   if (weight == p.initializers.end()) return std::nullopt;
   const std::vector<std::int64_t>& w = weight->second;
-  if (w.size() != 4 || w[0] < 1 || w[1] < 1 || w[2] != 3 || w[3] != 3) return std::nullopt;
+  if (w.size() != 4 || w[0] < 1 || w[1] < 1 || w[2] < 1 || w[3] != w[2]) return std::nullopt;
   if (n.inputs.size() == 3) {
     const auto bias = p.initializers.find(n.inputs[2]);
     if (bias == p.initializers.end() || bias->second != std::vector<std::int64_t>{w[0]}) return std::nullopt;
   }
-  const std::optional<UnitStrideConv> c = unit_stride_conv(n);
-  if (!c || (c->kernel != 0 && c->kernel != 3) || c->pad != 1) return std::nullopt;
-  group = c->group;
-  return w;
+  std::optional<ConvAttributes> c = conv_attributes(n);
+  if (!c || (c->kernel != 0 && c->kernel != w[2])) return std::nullopt;
+  c->kernel = w[2];
+  return SquareConv{w, *c};
 }
 
-// The model with every Conv that `takes` gets op type `op_type`, its inputs and name unchanged;
-// nullopt when there is none.
+// The model with every square Conv that `takes` gets op type `op_type`, its inputs, attributes and
+// name unchanged (cv::dnn hands the attributes to the layer as parameters); nullopt when there is
+// none.
 template <typename Takes>
 std::optional<std::string> retype_convs(const std::string& onnx, const char* op_type, Takes takes) {
   std::optional<ParsedGraph> parsed = parse_graph(onnx);
   if (!parsed) return std::nullopt;
   std::map<size_t, wire::Field> replaced;  // graph field -> the node with the new op type
   for (const Node& n : parsed->nodes) {
-    std::int64_t group = 0;
-    const std::optional<std::vector<std::int64_t>> w = padded_conv3x3_weight(n, *parsed, group);
-    if (!w || !takes(*w, group)) continue;
+    const std::optional<SquareConv> conv = square_conv(n, *parsed);
+    if (!conv || !takes(conv->weight, conv->attributes)) continue;
     std::vector<wire::Field> f;
     for (const std::string& in : n.inputs) f.push_back(wire::bytes_field(kNodeInput, in));
     f.push_back(wire::bytes_field(kNodeOutput, n.outputs[0]));
-    const std::string name = first_string(wire::parse(parsed->graph[n.field].bytes), kNodeName);
+    const std::vector<wire::Field> original = wire::parse(parsed->graph[n.field].bytes);
+    const std::string name = first_string(original, kNodeName);
     if (!name.empty()) f.push_back(wire::bytes_field(kNodeName, name));
     f.push_back(wire::bytes_field(kNodeOpType, op_type));
+    for (const wire::Field& a : original)
+      if (a.number == kNodeAttribute) f.push_back(a);
     replaced[n.field] = wire::bytes_field(kGraphNode, wire::serialize(f));
   }
   if (replaced.empty()) return std::nullopt;
@@ -595,14 +606,24 @@ std::optional<std::string> retype_convs(const std::string& onnx, const char* op_
 }  // namespace
 
 std::optional<std::string> replace_depthwise_convs(const std::string& onnx) {
-  // C x 1 x 3 x 3 weights in C groups.
-  return retype_convs(onnx, kDepthwiseOpType,
-                      [](const std::vector<std::int64_t>& w, std::int64_t group) { return w[1] == 1 && group == w[0]; });
+  // C x 1 x 3 x 3 weights in C groups, stride 1, one pixel of padding.
+  return retype_convs(onnx, kDepthwiseOpType, [](const std::vector<std::int64_t>& w, const ConvAttributes& c) {
+    return w[1] == 1 && c.group == w[0] && c.kernel == 3 && c.stride == 1 && c.pad == 1;
+  });
+}
+
+std::optional<std::string> replace_pointwise_convs(const std::string& onnx) {
+  // Cout x Cin x 1 x 1 weights in one group, stride 1, no padding.
+  return retype_convs(onnx, kPointwiseOpType, [](const std::vector<std::int64_t>& w, const ConvAttributes& c) {
+    return c.group == 1 && c.kernel == 1 && c.stride == 1 && c.pad == 0 && w[0] % kPointwiseBlock == 0 &&
+           w[1] <= kPointwiseMaxInputs;
+  });
 }
 
 std::optional<std::string> replace_small_input_convs(const std::string& onnx) {
-  return retype_convs(onnx, kSmallConvOpType, [](const std::vector<std::int64_t>& w, std::int64_t group) {
-    return group == 1 && w[1] <= kSmallConvMaxInputs && w[0] % kSmallConvBlock == 0;
+  return retype_convs(onnx, kSmallConvOpType, [](const std::vector<std::int64_t>& w, const ConvAttributes& c) {
+    return c.group == 1 && w[1] <= kSmallConvMaxInputs && w[0] % kSmallConvBlock == 0 &&
+           small_conv_supported(static_cast<int>(c.kernel), static_cast<int>(c.stride));
   });
 }
 

@@ -59,18 +59,29 @@ std::optional<std::string> cascade_max_pools(const std::string& onnx);
 // `onnx`: the bytes of an ONNX ModelProto. Each 3 x 3 depthwise Conv (constant C x 1 x 3 x 3 weights
 // in C groups, an optional constant bias, stride 1, no dilation, one pixel of padding: OSNet's
 // LightConv3x3) gets the op type kDepthwiseOpType (depthwise_layer.h; register_depthwise_layer()
-// before loading the result), its inputs and name unchanged. The output then differs from the
-// original model's by float rounding. Returns nullopt when the model has no such Conv. Throws
-// std::runtime_error when the bytes are not a protobuf message.
+// before loading the result), its inputs, attributes and name unchanged. The output then differs
+// from the original model's by float rounding. Returns nullopt when the model has no such Conv.
+// Throws std::runtime_error when the bytes are not a protobuf message.
 std::optional<std::string> replace_depthwise_convs(const std::string& onnx);
 
-// `onnx`: the bytes of an ONNX ModelProto. Each 3 x 3 Conv of one group with at most
-// kSmallConvMaxInputs input channels and a multiple of kSmallConvBlock output channels (constant
-// weights, an optional constant bias, stride 1, no dilation, one pixel of padding: YOLOX's stem
-// after the Focus fold, 12 -> 16 channels) gets the op type kSmallConvOpType (small_conv_layer.h;
-// register_small_conv_layer() before loading the result), its inputs and name unchanged. The output
-// then differs from the original model's by float rounding. Returns nullopt when the model has no
-// such Conv. Throws std::runtime_error when the bytes are not a protobuf message.
+// `onnx`: the bytes of an ONNX ModelProto. Each 1 x 1 Conv of one group (constant Cout x Cin x 1 x 1
+// weights, at most kPointwiseMaxInputs input channels, Cout a multiple of kPointwiseBlock, an
+// optional constant bias, stride 1, no dilation, no padding: 92 of OSNet x0.25's) gets the op type
+// kPointwiseOpType (pointwise_layer.h; register_pointwise_layer() before loading the result), its
+// inputs, attributes and name unchanged. The output then differs from the original model's by float
+// rounding. Returns nullopt when the model has no such Conv. Throws std::runtime_error when the bytes
+// are not a protobuf message.
+std::optional<std::string> replace_pointwise_convs(const std::string& onnx);
+
+// `onnx`: the bytes of an ONNX ModelProto. Each Conv of one group with at most kSmallConvMaxInputs
+// input channels, a multiple of kSmallConvBlock output channels and a kernel and stride the layer
+// runs (small_conv_supported: 3 x 3 with stride 1, YOLOX's stem after the Focus fold, 12 -> 16
+// channels; 7 x 7 with stride 2, OSNet's, 3 -> 16), with constant weights, an optional constant bias,
+// no dilation and the same padding on every side, gets the op type kSmallConvOpType
+// (small_conv_layer.h; register_small_conv_layer() before loading the result), its inputs,
+// attributes and name unchanged. The output then differs from the original model's by float
+// rounding. Returns nullopt when the model has no such Conv. Throws std::runtime_error when the
+// bytes are not a protobuf message.
 std::optional<std::string> replace_small_input_convs(const std::string& onnx);
 
 struct FoldedOutputs {

@@ -8,6 +8,7 @@
 #include <spdlog/spdlog.h>
 
 #include "semantics/detection/depthwise_layer.h"
+#include "semantics/detection/pointwise_layer.h"
 #include "semantics/detection/silu_layer.h"
 #include "semantics/detection/small_conv_layer.h"
 #include "slam/core/errors.h"
@@ -52,7 +53,7 @@ cv::Mat OnnxRewrites::restore_output(const std::string& name, const cv::Mat& out
 }
 
 cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint,
-                           OnnxRewrites& rewrites, bool depthwise_convs) {
+                           OnnxRewrites& rewrites, bool few_channel_convs) {
   rewrites = OnnxRewrites();
   if (!std::filesystem::is_regular_file(file)) throw InputError(file.string(), missing_hint);
   std::ifstream in(file, std::ios::binary);
@@ -60,14 +61,15 @@ cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string&
   if (!in && !in.eof()) throw InputError(file.string(), "cannot read the ONNX model");
   // Each rewrite reads the last one's model (or the file's bytes).
   std::optional<FoldedModel> folded_input;
-  std::optional<std::string> fused, cascaded, depthwise, small;
+  std::optional<std::string> fused, cascaded, depthwise, pointwise, small;
   std::optional<FoldedOutputs> folded_outputs;
   const std::string* model = &bytes;
   try {
     if ((folded_input = fold_space_to_depth_input(*model))) model = &folded_input->onnx;
     if ((fused = fuse_silu(*model))) model = &*fused;
     if ((cascaded = cascade_max_pools(*model))) model = &*cascaded;
-    if (depthwise_convs && (depthwise = replace_depthwise_convs(*model))) model = &*depthwise;
+    if (few_channel_convs && (depthwise = replace_depthwise_convs(*model))) model = &*depthwise;
+    if (few_channel_convs && (pointwise = replace_pointwise_convs(*model))) model = &*pointwise;
     if ((small = replace_small_input_convs(*model))) model = &*small;
     if ((folded_outputs = fold_output_transposes(*model))) model = &folded_outputs->onnx;
   } catch (const std::runtime_error& ex) {
@@ -77,6 +79,7 @@ cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string&
   try {
     if (fused) register_silu_layer();
     if (depthwise) register_depthwise_layer();
+    if (pointwise) register_pointwise_layer();
     if (small) register_small_conv_layer();
     cv::dnn::Net net = on_cpu(cv::dnn::readNetFromONNX(model->data(), model->size()), file);
     if (folded_input) rewrites.input = std::move(folded_input->input);

@@ -10,18 +10,11 @@
 #include <opencv2/dnn/all_layers.hpp>
 #include <opencv2/dnn/layer.details.hpp>
 
+#include "semantics/detection/float_lanes.h"
+
 namespace wardmap::semantics {
 
 namespace {
-
-// GCC / Clang vector extensions: W floats (or int32) in one register; Load reads and writes W
-// floats at any float-aligned address.
-template <int W>
-struct Lanes {
-  typedef float F __attribute__((vector_size(4 * W)));
-  typedef std::int32_t I __attribute__((vector_size(4 * W)));
-  typedef float Load __attribute__((vector_size(4 * W), aligned(4), may_alias));
-};
 
 // Pure arithmetic on buffers its caller owns, run millions of times a forward: left out of
 // ThreadSanitizer's instrumentation, which made one YOLOX forward take seconds.

@@ -19,6 +19,7 @@
 #include "semantics/detection/model_description.h"
 #include "semantics/detection/model_search.h"
 #include "semantics/detection/onnx_net.h"
+#include "semantics/detection/pointwise_layer.h"
 #include "semantics/detection/protobuf_wire.h"
 #include "semantics/detection/silu_layer.h"
 #include "semantics/detection/small_conv_layer.h"
@@ -474,23 +475,26 @@ std::string float_tensor(const std::string& name, const std::vector<std::int64_t
 
 struct DepthwiseSpec {
   int channels = 3, kernel = 3, stride = 1, pad = 1;
+  int out_channels = 0;   // 0: = channels
+  int height = 5, width = 7;  // the input's
   int group = 3;          // = channels: depthwise
   bool bias = true;
   bool relu = true;       // a Relu after it (fused into the layer)
   bool weight_is_input = false;  // the weights a graph input, not a constant
 };
 
-// x (1 x C x 5 x 7) -> Conv (C -> C channels in the spec's groups, kernel, stride and padding) -> [Relu] -> y.
+// x (1 x C x H x W, 5 x 7 unless the spec says) -> Conv (C -> C' channels in the spec's groups, kernel, stride and padding) -> [Relu] -> y.
 std::string depthwise_model(const DepthwiseSpec& spec, unsigned seed = 1) {
   std::vector<wire::Field> g;
   cv::RNG rng(seed);
   const int in_per_group = spec.channels / spec.group;
-  std::vector<float> w(static_cast<size_t>(spec.channels * in_per_group * spec.kernel * spec.kernel)), b(spec.channels);
+  const int outs = spec.out_channels > 0 ? spec.out_channels : spec.channels;
+  std::vector<float> w(static_cast<size_t>(outs * in_per_group * spec.kernel * spec.kernel)), b(outs);
   for (float& v : w) v = static_cast<float>(rng.uniform(-1.0, 1.0));
   for (float& v : b) v = static_cast<float>(rng.uniform(-1.0, 1.0));
   if (!spec.weight_is_input)
-    g.push_back(bytes_field(5, float_tensor("w", {spec.channels, in_per_group, spec.kernel, spec.kernel}, w)));
-  if (spec.bias) g.push_back(bytes_field(5, float_tensor("b", {spec.channels}, b)));
+    g.push_back(bytes_field(5, float_tensor("w", {outs, in_per_group, spec.kernel, spec.kernel}, w)));
+  if (spec.bias) g.push_back(bytes_field(5, float_tensor("b", {outs}, b)));
   std::vector<std::string> in = {"x", "w"};
   if (spec.bias) in.push_back("b");
   const std::string conv_out = spec.relu ? "c" : "y";
@@ -500,11 +504,12 @@ std::string depthwise_model(const DepthwiseSpec& spec, unsigned seed = 1) {
                                    ints_attribute("strides", {spec.stride, spec.stride})})));
   if (spec.relu) g.push_back(bytes_field(1, node("Relu", {"c"}, {"y"})));
   g.push_back(bytes_field(2, "depthwise_test"));
-  g.push_back(bytes_field(11, float_value("x", {1, spec.channels, 5, 7})));
+  g.push_back(bytes_field(11, float_value("x", {1, spec.channels, spec.height, spec.width})));
   if (spec.weight_is_input)
-    g.push_back(bytes_field(11, float_value("w", {spec.channels, in_per_group, spec.kernel, spec.kernel})));
-  const int oh = (5 + 2 * spec.pad - spec.kernel) / spec.stride + 1, ow = (7 + 2 * spec.pad - spec.kernel) / spec.stride + 1;
-  g.push_back(bytes_field(12, float_value("y", {1, spec.channels, oh, ow})));
+    g.push_back(bytes_field(11, float_value("w", {outs, in_per_group, spec.kernel, spec.kernel})));
+  const int oh = (spec.height + 2 * spec.pad - spec.kernel) / spec.stride + 1;
+  const int ow = (spec.width + 2 * spec.pad - spec.kernel) / spec.stride + 1;
+  g.push_back(bytes_field(12, float_value("y", {1, outs, oh, ow})));
   const std::string opset = serialize({bytes_field(1, ""), varint_field(2, 11)});
   return serialize(
       {varint_field(1, 7), bytes_field(2, "wardmap-test"), bytes_field(7, serialize(g)), bytes_field(8, opset)});
@@ -579,12 +584,14 @@ TEST(OnnxFold, OsnetRewrittenGivesTheSameEmbedding) {
   WARDMAP_REQUIRE_DATA("images");
   const auto file = wardmap::test::shared_models_dir() / "osnet-x0_25/osnet_x0_25_msmt17.onnx";
   OnnxRewrites rewrites;
-  cv::dnn::Net rewritten = load_onnx_net(file, "missing", rewrites, /*depthwise_convs=*/true);
+  cv::dnn::Net rewritten = load_onnx_net(file, "missing", rewrites, /*few_channel_convs=*/true);
   EXPECT_FALSE(rewrites.input.has_value());
   EXPECT_TRUE(rewrites.transposed_outputs.empty());
   cv::dnn::Net original = load_onnx_net(file, "missing");
   EXPECT_EQ(rewritten.getLayersCount(kDepthwiseOpType), 60);  // OSNet x0.25's LightConv3x3 blocks
-  EXPECT_EQ(original.getLayersCount("Convolution") - rewritten.getLayersCount("Convolution"), 60);
+  EXPECT_EQ(rewritten.getLayersCount(kSmallConvOpType), 1);   // its 7 x 7 stem, stride 2
+  EXPECT_EQ(rewritten.getLayersCount(kPointwiseOpType), 92);  // 1 x 1 from at most 32 channels
+  EXPECT_EQ(original.getLayersCount("Convolution") - rewritten.getLayersCount("Convolution"), 153);
 
   // A person's crop of bus.jpg through both, and the Embedder (which rewrites) against the original.
   const cv::Mat image = cv::imread((wardmap::test::shared_data_dir() / "images" / "bus.jpg").string());
@@ -603,81 +610,183 @@ TEST(OnnxFold, OsnetRewrittenGivesTheSameEmbedding) {
 }
 
 TEST(SmallConv, KernelMatchesTheDefinition) {
-  // Widths below, at and above a vector (4 or 8 lanes) and its multiples; two output blocks.
+  // Both shapes the layer runs, with and without padding; output widths below, at and above a
+  // vector (4 or 8 lanes) and its multiples; odd and even input sides (stride 2); two output blocks.
+  struct Case {
+    int kernel, stride, pad, h, w, cin;
+  };
+  const std::vector<Case> cases = {{3, 1, 1, 1, 1, 1},  {3, 1, 1, 3, 5, 2},  {3, 1, 1, 4, 8, 12}, {3, 1, 1, 5, 17, 3},
+                                   {3, 1, 1, 6, 9, 16}, {3, 1, 0, 4, 11, 3}, {7, 2, 3, 1, 1, 1},  {7, 2, 3, 8, 16, 3},
+                                   {7, 2, 3, 9, 35, 2}, {7, 2, 3, 16, 33, 3}, {7, 2, 0, 9, 23, 4}, {7, 2, 1, 12, 20, 16}};
   cv::RNG rng(11);
-  for (const auto& [h, w, cin] : std::vector<std::array<int, 3>>{{1, 1, 1}, {3, 5, 2}, {4, 8, 12}, {5, 17, 3}, {6, 9, 16}}) {
-    const int cout = 16, stride = w + 2 + 8;
-    std::vector<float> src(static_cast<size_t>(cin * h * w)), weights(static_cast<size_t>(cout * cin * 9)), bias(cout);
+  for (const Case& k : cases) {
+    SmallConvGeometry g;
+    g.in_channels = k.cin;
+    g.out_channels = 16;
+    g.kernel = k.kernel;
+    g.stride = k.stride;
+    g.pad = k.pad;
+    g.height = k.h;
+    g.width = k.w;
+    const int cin = k.cin, cout = g.out_channels, h = k.h, w = k.w, oh = g.out_height(), ow = g.out_width();
+    ASSERT_GE(oh, 1);
+    ASSERT_GE(ow, 1);
+    const int taps = k.kernel * k.kernel;
+    std::vector<float> src(static_cast<size_t>(cin * h * w)), weights(static_cast<size_t>(cout * cin * taps)), bias(cout);
     for (float& v : src) v = static_cast<float>(rng.uniform(-3.0, 3.0));
     for (float& v : weights) v = static_cast<float>(rng.uniform(-1.0, 1.0));
     for (float& v : bias) v = static_cast<float>(rng.uniform(-1.0, 1.0));
-    std::vector<float> padded(static_cast<size_t>(cin * (h + 2) * stride), 0.0f);
-    for (int c = 0; c < cin; ++c)
-      for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) padded[(static_cast<size_t>(c) * (h + 2) + y + 1) * stride + x + 1] = src[(c * h + y) * w + x];
-    std::vector<float> dst(static_cast<size_t>(cout * h * w) + 1, -7.0f);
+    std::vector<float> layout(g.layout_floats(), 0.0f);
+    small_conv_layout(src.data(), g, layout.data());
+    const std::vector<float> packed = small_conv_pack_weights(weights.data(), g);
+    std::vector<float> dst(static_cast<size_t>(cout * oh * ow) + 1, -7.0f);
     // In two row ranges, as cv::dnn's threads would.
-    small_input_conv3x3(padded.data(), cin, cout, h, w, stride, weights.data(), bias.data(), dst.data(), 0, h / 2);
-    small_input_conv3x3(padded.data(), cin, cout, h, w, stride, weights.data(), bias.data(), dst.data(), h / 2, h);
+    small_input_conv(layout.data(), g, packed.data(), bias.data(), dst.data(), 0, oh / 2);
+    small_input_conv(layout.data(), g, packed.data(), bias.data(), dst.data(), oh / 2, oh);
+    const std::string where = std::to_string(k.kernel) + "/" + std::to_string(k.stride) + "/" + std::to_string(k.pad) +
+                              " " + std::to_string(h) + "x" + std::to_string(w) + " cin " + std::to_string(cin);
     for (int o = 0; o < cout; ++o)
-      for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
+      for (int y = 0; y < oh; ++y)
+        for (int x = 0; x < ow; ++x) {
           double expected = bias[o];
           for (int c = 0; c < cin; ++c)
-            for (int i = 0; i < 3; ++i)
-              for (int j = 0; j < 3; ++j) {
-                const int sy = y + i - 1, sx = x + j - 1;
+            for (int i = 0; i < k.kernel; ++i)
+              for (int j = 0; j < k.kernel; ++j) {
+                const int sy = k.stride * y + i - k.pad, sx = k.stride * x + j - k.pad;
                 if (sy >= 0 && sy < h && sx >= 0 && sx < w)
-                  expected += double{weights[((o * cin + c) * 3 + i) * 3 + j]} * src[(c * h + sy) * w + sx];
+                  expected += double{weights[((o * cin + c) * k.kernel + i) * k.kernel + j]} * src[(c * h + sy) * w + sx];
               }
-          EXPECT_NEAR(dst[(o * h + y) * w + x], expected, 1e-4) << h << "x" << w << " cin " << cin << " at " << o << ","
-                                                                << y << "," << x;
+          EXPECT_NEAR(dst[(o * oh + y) * ow + x], expected, 1e-4) << where << " at " << o << "," << y << "," << x;
         }
-    EXPECT_EQ(dst[static_cast<size_t>(cout * h * w)], -7.0f) << "wrote past the end at " << h << "x" << w;
+    EXPECT_EQ(dst[static_cast<size_t>(cout * oh * ow)], -7.0f) << "wrote past the end at " << where;
   }
 }
 
 TEST(OnnxFold, SmallInputConvsAreReplacedAndTheOutputMatches) {
   register_small_conv_layer();
-  for (bool bias : {true, false})
-    for (bool relu : {true, false}) {
-      DepthwiseSpec spec;  // a dense 8 -> 8 channel convolution
-      spec.channels = 8;
-      spec.group = 1;
-      spec.bias = bias;
-      spec.relu = relu;
-      const std::string onnx = depthwise_model(spec);
-      EXPECT_FALSE(replace_depthwise_convs(onnx).has_value());
-      const std::optional<std::string> replaced = replace_small_input_convs(onnx);
-      ASSERT_TRUE(replaced.has_value()) << bias << relu;
-      EXPECT_EQ(op_types(*replaced).front(), kSmallConvOpType);
-      const int dims[4] = {1, 8, 5, 7};
-      cv::Mat blob(4, dims, CV_32F);
-      cv::randu(blob, -3.0, 3.0);
-      const cv::Mat reference = forward(onnx, blob), out = forward(*replaced, blob);
-      ASSERT_EQ(out.total(), reference.total());
-      EXPECT_LE(cv::norm(out.reshape(1, 1), reference.reshape(1, 1), cv::NORM_INF), 1e-4) << bias << relu;
-      EXPECT_GT(cv::norm(out.reshape(1, 1), cv::NORM_INF), 0.5);
-      double least = 0;
-      cv::minMaxIdx(out.reshape(1, 1), &least);
-      if (relu) EXPECT_GE(least, 0.0);
-      else EXPECT_LT(least, 0.0);
-    }
-  // Left alone: depthwise, strided, 5 x 5, unpadded, weights as an input, more than 16 inputs, an
-  // output count that is not a multiple of 8 (3).
-  DepthwiseSpec depthwise, strided, five, unpadded, input_weights, wide, odd;
-  for (DepthwiseSpec* spec : {&strided, &five, &unpadded, &input_weights})
+  // A dense 8 -> 8 channel 3 x 3 convolution, padded and not; a 7 x 7 one with stride 2 and 3 pixels
+  // of padding, 3 -> 16 channels (OSNet's stem) on 20 x 27 and 8 -> 8 unpadded on 16 x 19.
+  DepthwiseSpec three, unpadded, seven, seven_unpadded;
+  for (DepthwiseSpec* spec : {&three, &unpadded, &seven_unpadded}) spec->channels = 8, spec->group = 1;
+  unpadded.pad = 0;
+  seven.channels = 3, seven.out_channels = 16, seven.group = 1, seven.kernel = 7, seven.stride = 2, seven.pad = 3;
+  seven.height = 20, seven.width = 27;
+  seven_unpadded.kernel = 7, seven_unpadded.stride = 2, seven_unpadded.pad = 0;
+  seven_unpadded.height = 16, seven_unpadded.width = 19;
+  for (DepthwiseSpec spec : {three, unpadded, seven, seven_unpadded})
+    for (bool bias : {true, false})
+      for (bool relu : {true, false}) {
+        spec.bias = bias;
+        spec.relu = relu;
+        const std::string what = std::to_string(spec.kernel) + "/" + std::to_string(spec.stride) + "/" +
+                                 std::to_string(spec.pad) + (bias ? " bias" : "") + (relu ? " relu" : "");
+        const std::string onnx = depthwise_model(spec);
+        EXPECT_FALSE(replace_depthwise_convs(onnx).has_value());
+        const std::optional<std::string> replaced = replace_small_input_convs(onnx);
+        ASSERT_TRUE(replaced.has_value()) << what;
+        EXPECT_EQ(op_types(*replaced).front(), kSmallConvOpType);
+        const int dims[4] = {1, spec.channels, spec.height, spec.width};
+        cv::Mat blob(4, dims, CV_32F);
+        cv::randu(blob, -3.0, 3.0);
+        const cv::Mat reference = forward(onnx, blob), out = forward(*replaced, blob);
+        ASSERT_EQ(out.total(), reference.total()) << what;
+        ASSERT_EQ(out.size[2], (spec.height + 2 * spec.pad - spec.kernel) / spec.stride + 1) << what;
+        EXPECT_LE(cv::norm(out.reshape(1, 1), reference.reshape(1, 1), cv::NORM_INF), 1e-4) << what;
+        EXPECT_GT(cv::norm(out.reshape(1, 1), cv::NORM_INF), 0.5) << what;
+        double least = 0;
+        cv::minMaxIdx(out.reshape(1, 1), &least);
+        if (relu) EXPECT_GE(least, 0.0) << what;
+        else EXPECT_LT(least, 0.0) << what;
+      }
+  // Left alone: depthwise, 3 x 3 with stride 2, 5 x 5, 7 x 7 with stride 1, weights as an input,
+  // more than 16 inputs, an output count that is not a multiple of 8 (3).
+  DepthwiseSpec depthwise, strided, five, seven_unit, input_weights, wide, odd;
+  for (DepthwiseSpec* spec : {&strided, &five, &seven_unit, &input_weights})
     spec->channels = 8, spec->group = 1;
   depthwise.channels = 8, depthwise.group = 8;
   strided.stride = 2;
   five.kernel = 5, five.pad = 2;
-  unpadded.pad = 0;
+  seven_unit.kernel = 7, seven_unit.pad = 3;
   input_weights.weight_is_input = true;
   wide.channels = 24, wide.group = 1;
   odd.group = 1;
-  for (const DepthwiseSpec& spec : {depthwise, strided, five, unpadded, input_weights, wide, odd})
+  for (const DepthwiseSpec& spec : {depthwise, strided, five, seven_unit, input_weights, wide, odd})
     EXPECT_FALSE(replace_small_input_convs(depthwise_model(spec)).has_value())
         << spec.channels << " " << spec.group << " " << spec.stride << spec.kernel << spec.pad << spec.weight_is_input;
+}
+
+TEST(Pointwise, KernelMatchesTheDefinition) {
+  // Planes below, at and above a vector (4 or 8 lanes) and a block of three; one to 32 inputs; one to
+  // three output blocks.
+  cv::RNG rng(13);
+  for (const size_t plane : {1, 3, 7, 8, 9, 23, 24, 25, 47, 100, 2048})
+    for (const int cin : {1, 5, 16, 32})
+      for (const int cout : {4, 12}) {
+        std::vector<float> src(cin * plane), weights(static_cast<size_t>(cout * cin)), bias(cout);
+        for (float& v : src) v = static_cast<float>(rng.uniform(-3.0, 3.0));
+        for (float& v : weights) v = static_cast<float>(rng.uniform(-1.0, 1.0));
+        for (float& v : bias) v = static_cast<float>(rng.uniform(-1.0, 1.0));
+        std::vector<float> dst(cout * plane + 1, -7.0f);
+        pointwise_conv(src.data(), cin, cout, plane, weights.data(), bias.data(), dst.data());
+        for (int o = 0; o < cout; ++o)
+          for (size_t p = 0; p < plane; ++p) {
+            double expected = bias[o];
+            for (int c = 0; c < cin; ++c) expected += double{weights[o * cin + c]} * src[c * plane + p];
+            ASSERT_NEAR(dst[o * plane + p], expected, 1e-4) << plane << " px, " << cin << " -> " << cout << " at " << o
+                                                            << "," << p;
+          }
+        EXPECT_EQ(dst[cout * plane], -7.0f) << "wrote past the end at " << plane << " px, " << cin << " -> " << cout;
+      }
+}
+
+TEST(OnnxFold, PointwiseConvsAreReplacedAndTheOutputMatches) {
+  register_pointwise_layer();
+  // 8 -> 12 and 32 -> 4 channels, with and without bias and Relu.
+  DepthwiseSpec narrow, widest;
+  for (DepthwiseSpec* spec : {&narrow, &widest}) spec->group = 1, spec->kernel = 1, spec->pad = 0;
+  narrow.channels = 8, narrow.out_channels = 12;
+  widest.channels = kPointwiseMaxInputs, widest.out_channels = 4;
+  for (DepthwiseSpec spec : {narrow, widest})
+    for (bool bias : {true, false})
+      for (bool relu : {true, false}) {
+        spec.bias = bias;
+        spec.relu = relu;
+        const std::string what = std::to_string(spec.channels) + " -> " + std::to_string(spec.out_channels) +
+                                 (bias ? " bias" : "") + (relu ? " relu" : "");
+        const std::string onnx = depthwise_model(spec);
+        EXPECT_FALSE(replace_depthwise_convs(onnx).has_value()) << what;
+        EXPECT_FALSE(replace_small_input_convs(onnx).has_value()) << what;
+        const std::optional<std::string> replaced = replace_pointwise_convs(onnx);
+        ASSERT_TRUE(replaced.has_value()) << what;
+        EXPECT_EQ(op_types(*replaced).front(), kPointwiseOpType);
+        const int dims[4] = {1, spec.channels, spec.height, spec.width};
+        cv::Mat blob(4, dims, CV_32F);
+        cv::randu(blob, -3.0, 3.0);
+        const cv::Mat reference = forward(onnx, blob), out = forward(*replaced, blob);
+        ASSERT_EQ(out.total(), reference.total()) << what;
+        EXPECT_LE(cv::norm(out.reshape(1, 1), reference.reshape(1, 1), cv::NORM_INF), 1e-5) << what;
+        EXPECT_GT(cv::norm(out.reshape(1, 1), cv::NORM_INF), 0.5) << what;
+        double least = 0;
+        cv::minMaxIdx(out.reshape(1, 1), &least);
+        if (relu) EXPECT_GE(least, 0.0) << what;
+        else EXPECT_LT(least, 0.0) << what;
+      }
+  // Left alone: more than kPointwiseMaxInputs inputs, an output count that is not a multiple of 4,
+  // depthwise 1 x 1 (C groups), strided, padded, 3 x 3, weights as an input.
+  DepthwiseSpec wide, odd, grouped, strided, padded, three, input_weights;
+  for (DepthwiseSpec* spec : {&wide, &odd, &strided, &padded, &three, &input_weights})
+    spec->channels = 8, spec->group = 1, spec->kernel = 1, spec->pad = 0;
+  wide.channels = kPointwiseMaxInputs + 8;
+  odd.out_channels = 6;
+  grouped.channels = 8, grouped.group = 8, grouped.kernel = 1, grouped.pad = 0;
+  strided.stride = 2;
+  padded.pad = 1;
+  three.kernel = 3, three.pad = 1, three.channels = 24;  // too many inputs for the small-input layer too
+  input_weights.weight_is_input = true;
+  for (const DepthwiseSpec& spec : {wide, odd, grouped, strided, padded, three, input_weights})
+    EXPECT_FALSE(replace_pointwise_convs(depthwise_model(spec)).has_value())
+        << spec.channels << " " << spec.out_channels << " " << spec.group << " " << spec.stride << spec.kernel << spec.pad
+        << spec.weight_is_input;
 }
 
 }  // namespace
