@@ -27,7 +27,7 @@ const cv::Scalar kStd(0.229, 0.224, 0.225);
 Embedder::Embedder(const std::filesystem::path& onnx_file, int threads) {
   if (threads < 1 || threads > 8)
     throw std::invalid_argument("Embedder: threads must be in [1, 8], got " + std::to_string(threads));
-  // Rewritten for speed (onnx_net.h; OSNet: its 7 x 7 stem, 60 depthwise and 80-odd 1 x 1
+  // Rewritten for speed (onnx_net.h; OSNet: its 7 x 7 stem, 60 depthwise and 92 of its 1 x 1
   // convolutions), the same for every copy.
   for (int k = 0; k < threads; ++k)
     nets_.push_back(load_onnx_net(

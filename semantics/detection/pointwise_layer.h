@@ -1,7 +1,7 @@
 // A 1 x 1 convolution (one group, stride 1, no padding) of few input channels as one cv::dnn
-// layer. OSNet x0.25 runs about a hundred 1 x 1 convolutions, most from 16, 24 or 32 channels on
-// planes of 64 x 32 down to 16 x 8. OpenCV 4.6 takes 80-140 us for a 16 -> 16 one at 64 x 32 (524 k
-// multiply-adds), and those from at most 32 channels 4.1 of the 12-13 ms of a crop on one thread
+// layer. OSNet x0.25 runs 92 of them from 16, 24 or 32 channels (to a multiple of 4), on planes of
+// 64 x 32 down to 16 x 8. OpenCV 4.6 takes 80-140 us for a 16 -> 16 one at 64 x 32 (524 k
+// multiply-adds), and 4.1 of the 12-13 ms of a crop for the 92 on one thread
 // (Net::getPerfProfile, 2026-12-01). Summing 4 output channels x 24 pixels in registers takes 1.9
 // ms for them. From 64 channels and more it is no faster than cv::dnn, which keeps those.
 // replace_pointwise_convs (onnx_fold.h) gives such Conv nodes the op type kPointwiseOpType; an
