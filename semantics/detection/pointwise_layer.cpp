@@ -55,8 +55,7 @@ __attribute__((always_inline, no_sanitize("thread"))) inline void pointwise(cons
   }
 }
 
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-#define WARDMAP_POINTWISE_AVX2 1
+#ifdef WARDMAP_X86_SIMD
 __attribute__((target("avx2,fma"), no_sanitize("thread"))) void pointwise_8(const float* src, int in_channels,
                                                                             int out_channels, size_t plane,
                                                                             const float* weights, const float* bias,
@@ -95,9 +94,8 @@ class PointwiseLayer : public ConvLayerBase {
 __attribute__((no_sanitize("thread"))) void pointwise_conv(const float* src, int in_channels, int out_channels,
                                                            size_t plane, const float* weights, const float* bias,
                                                            float* dst) {
-#ifdef WARDMAP_POINTWISE_AVX2
-  static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  if (avx2) return pointwise_8(src, in_channels, out_channels, plane, weights, bias, dst);
+#ifdef WARDMAP_X86_SIMD
+  if (cpu_has_avx2_fma()) return pointwise_8(src, in_channels, out_channels, plane, weights, bias, dst);
 #endif
   pointwise<4>(src, in_channels, out_channels, plane, weights, bias, dst);
 }

@@ -60,14 +60,9 @@ WARDMAP_SILU_KERNEL void silu_loop(const float* src, float* dst, std::size_t n) 
   for (std::size_t k = 0; k < n - i; ++k) dst[i + k] = out[k];
 }
 
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-#define WARDMAP_SILU_AVX2 1
+#ifdef WARDMAP_X86_SIMD
 __attribute__((target("avx2,fma"), no_sanitize("thread"))) void silu_8lanes(const float* src, float* dst, std::size_t n) {
   silu_loop<8>(src, dst, n);
-}
-bool cpu_has_avx2() {
-  static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  return has;
 }
 #endif
 
@@ -121,8 +116,8 @@ __attribute__((no_sanitize("thread"))) void silu_4lanes(const float* src, float*
 }
 
 void silu(const float* src, float* dst, std::size_t n) {
-#ifdef WARDMAP_SILU_AVX2
-  if (cpu_has_avx2()) return silu_8lanes(src, dst, n);
+#ifdef WARDMAP_X86_SIMD
+  if (cpu_has_avx2_fma()) return silu_8lanes(src, dst, n);
 #endif
   silu_4lanes(src, dst, n);
 }

@@ -68,8 +68,7 @@ __attribute__((always_inline, no_sanitize("thread"))) inline void conv_rows_any(
     conv_rows<L, 7, 2>(layout, g, packed, bias, dst, row_begin, row_end);
 }
 
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-#define WARDMAP_SMALL_CONV_AVX2 1
+#ifdef WARDMAP_X86_SIMD
 __attribute__((target("avx2,fma"), no_sanitize("thread"))) void conv_rows_8(const float* layout, SmallConvGeometry g,
                                                                             const float* packed, const float* bias,
                                                                             float* dst, int row_begin, int row_end) {
@@ -196,9 +195,8 @@ std::vector<float> small_conv_pack_weights(const float* weights, const SmallConv
 __attribute__((no_sanitize("thread"))) void small_input_conv(const float* layout, SmallConvGeometry g,
                                                              const float* packed, const float* bias, float* dst,
                                                              int row_begin, int row_end) {
-#ifdef WARDMAP_SMALL_CONV_AVX2
-  static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  if (avx2) return conv_rows_8(layout, g, packed, bias, dst, row_begin, row_end);
+#ifdef WARDMAP_X86_SIMD
+  if (cpu_has_avx2_fma()) return conv_rows_8(layout, g, packed, bias, dst, row_begin, row_end);
 #endif
   conv_rows_any<4>(layout, g, packed, bias, dst, row_begin, row_end);
 }
