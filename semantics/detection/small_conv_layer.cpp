@@ -137,9 +137,8 @@ class SmallConvLayer : public ConvLayerBase {
       const SmallConvGeometry g = g_;
       small_input_conv(layout_, g, packed_, bias_, dst_, r.start, r.end);
       if (activation_) {
-        const int width = (g.width + 2 * g.pad - g.kernel) / g.stride + 1;
-        const int height = (g.height + 2 * g.pad - g.kernel) / g.stride + 1;
-        const size_t plane = static_cast<size_t>(height) * width;
+        const int width = g.out_width();  // of the copy on this thread's stack
+        const size_t plane = static_cast<size_t>(g.out_height()) * width;
         float* first = dst_ + static_cast<size_t>(r.start) * width;
         activation_->forwardSlice(first, first, (r.end - r.start) * width, plane, 0, g.out_channels);
       }
