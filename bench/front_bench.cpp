@@ -105,8 +105,9 @@ void run_front(benchmark::State& state, const char* sequence, const char* settin
   state.counters["p95_ms"] = pct(seconds, 0.95);
   state.counters["max_ms"] = pct(seconds, 1.0);
   state.counters["median_vs_target"] = pct(seconds, 0.5) / target_ms;
-  // The ORB extraction inside those times: about half of them, and the part that shows best how
-  // fast the host is that hour (4.5-4.8 ms a 7-Scenes frame on a quiet one, docs/EXPERIMENTS.md).
+  // The feature extraction inside those times (FrameResult::extract_seconds: the grey image, ORB,
+  // the depth samples and the flow's pyramid): about half of them, and the part that shows best how
+  // fast the host is that hour (ORB alone 4.5-4.8 ms a 7-Scenes frame on a quiet one).
   state.counters["extract_median_ms"] = pct(extract_seconds, 0.5);
   state.counters["tracked_pct"] = 100.0 * tracked / static_cast<double>(seconds.size());
   state.counters["keyframe_pct"] = 100.0 * keyframes / static_cast<double>(seconds.size());
