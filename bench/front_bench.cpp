@@ -57,8 +57,9 @@ BENCHMARK(BM_OrbExtract640x480)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 // One pass over a shared sequence with local mapping on its own thread (as `wardmap run` does):
 // per-frame tracking time (extraction + tracking, median / p95 / max), the ratio of the median to
-// the target, the median extraction time alone, keyframe rate, local BA time per keyframe, the largest keyframe queue seen
-// and the process's peak resident memory (frames are read as they go, so it is the SLAM's).
+// the target, the median extraction time alone, keyframe rate, local BA time per keyframe,
+// the largest keyframe queue seen and the process's peak resident memory (frames are read as they
+// go, so it is the SLAM's).
 // The benchmark's first argument picks tracking.pose_solver: 0 = ceres (the default), 1 = lm; the
 // second the optical flow (tracking.flow_extend / _mono): 0 = the settings' (by default on in RGB-D,
 // off in monocular), 1 = on, 2 = off; each benchmark runs the one its mode does not by default.
@@ -106,8 +107,8 @@ void run_front(benchmark::State& state, const char* sequence, const char* settin
   state.counters["max_ms"] = pct(seconds, 1.0);
   state.counters["median_vs_target"] = pct(seconds, 0.5) / target_ms;
   // The feature extraction inside those times (FrameResult::extract_seconds: the grey image, ORB,
-  // the depth samples and the flow's pyramid): about half of them, and the part that shows best how
-  // fast the host is that hour (ORB alone 4.5-4.8 ms a 7-Scenes frame on a quiet one).
+  // the depth samples and the flow's pyramid): half to three quarters of them, and the part that
+  // shows best how fast the host is that hour (ORB alone 4.5-4.8 ms a 7-Scenes frame on a quiet one).
   state.counters["extract_median_ms"] = pct(extract_seconds, 0.5);
   state.counters["tracked_pct"] = 100.0 * tracked / static_cast<double>(seconds.size());
   state.counters["keyframe_pct"] = 100.0 * keyframes / static_cast<double>(seconds.size());
