@@ -515,6 +515,27 @@ std::string depthwise_model(const DepthwiseSpec& spec, unsigned seed = 1) {
       {varint_field(1, 7), bytes_field(2, "wardmap-test"), bytes_field(7, serialize(g)), bytes_field(8, opset)});
 }
 
+// Runs the model and its rewrite on one random input of the spec's shape. The outputs must agree
+// within `tolerance` and not be all zero, and the rewrite must apply the Relu exactly where the
+// spec has one (no negative value with it, some without). Returns the rewrite's output, empty when
+// the two sizes differ.
+cv::Mat expect_same_output(const std::string& onnx, const std::string& replaced, const DepthwiseSpec& spec,
+                           double tolerance, const std::string& what) {
+  const int dims[4] = {1, spec.channels, spec.height, spec.width};
+  cv::Mat blob(4, dims, CV_32F);
+  cv::randu(blob, -3.0, 3.0);
+  const cv::Mat reference = forward(onnx, blob), out = forward(replaced, blob);
+  EXPECT_EQ(out.total(), reference.total()) << what;
+  if (out.total() != reference.total()) return {};
+  EXPECT_LE(cv::norm(out.reshape(1, 1), reference.reshape(1, 1), cv::NORM_INF), tolerance) << what;
+  EXPECT_GT(cv::norm(out.reshape(1, 1), cv::NORM_INF), 0.5) << what;  // not all zero
+  double least = 0;
+  cv::minMaxIdx(out.reshape(1, 1), &least);
+  if (spec.relu) EXPECT_GE(least, 0.0) << what;  // the Relu was applied ...
+  else EXPECT_LT(least, 0.0) << what;            // ... and only where there is one
+  return out;
+}
+
 TEST(Depthwise, KernelMatchesTheDefinition) {
   cv::RNG rng(7);
   for (const auto& [h, w] : std::vector<std::pair<int, int>>{{1, 1}, {1, 5}, {4, 1}, {2, 2}, {7, 9}, {16, 33}}) {
@@ -548,17 +569,7 @@ TEST(OnnxFold, DepthwiseConvsAreReplacedAndTheOutputMatches) {
       const std::optional<std::string> replaced = replace_depthwise_convs(onnx);
       ASSERT_TRUE(replaced.has_value()) << bias << relu;
       EXPECT_EQ(op_types(*replaced).front(), kDepthwiseOpType);
-      const int dims[4] = {1, 3, 5, 7};
-      cv::Mat blob(4, dims, CV_32F);
-      cv::randu(blob, -3.0, 3.0);
-      const cv::Mat reference = forward(onnx, blob), out = forward(*replaced, blob);
-      ASSERT_EQ(out.total(), reference.total());
-      EXPECT_LE(cv::norm(out.reshape(1, 1), reference.reshape(1, 1), cv::NORM_INF), 1e-5) << bias << relu;
-      EXPECT_GT(cv::norm(out.reshape(1, 1), cv::NORM_INF), 0.5);  // not all zero
-      double least = 0;
-      cv::minMaxIdx(out.reshape(1, 1), &least);
-      if (relu) EXPECT_GE(least, 0.0);   // the Relu was applied ...
-      else EXPECT_LT(least, 0.0);        // ... and only where there is one
+      expect_same_output(onnx, *replaced, spec, 1e-5, std::to_string(bias) + std::to_string(relu));
     }
 }
 
@@ -685,18 +696,9 @@ TEST(OnnxFold, SmallInputConvsAreReplacedAndTheOutputMatches) {
         const std::optional<std::string> replaced = replace_small_input_convs(onnx);
         ASSERT_TRUE(replaced.has_value()) << what;
         EXPECT_EQ(op_types(*replaced).front(), kSmallConvOpType);
-        const int dims[4] = {1, spec.channels, spec.height, spec.width};
-        cv::Mat blob(4, dims, CV_32F);
-        cv::randu(blob, -3.0, 3.0);
-        const cv::Mat reference = forward(onnx, blob), out = forward(*replaced, blob);
-        ASSERT_EQ(out.total(), reference.total()) << what;
-        ASSERT_EQ(out.size[2], (spec.height + 2 * spec.pad - spec.kernel) / spec.stride + 1) << what;
-        EXPECT_LE(cv::norm(out.reshape(1, 1), reference.reshape(1, 1), cv::NORM_INF), 1e-4) << what;
-        EXPECT_GT(cv::norm(out.reshape(1, 1), cv::NORM_INF), 0.5) << what;
-        double least = 0;
-        cv::minMaxIdx(out.reshape(1, 1), &least);
-        if (relu) EXPECT_GE(least, 0.0) << what;
-        else EXPECT_LT(least, 0.0) << what;
+        const cv::Mat out = expect_same_output(onnx, *replaced, spec, 1e-4, what);
+        ASSERT_FALSE(out.empty()) << what;
+        EXPECT_EQ(out.size[2], (spec.height + 2 * spec.pad - spec.kernel) / spec.stride + 1) << what;
       }
   // Left alone: depthwise, 3 x 3 with stride 2, 5 x 5, 7 x 7 with stride 1, weights as an input,
   // more than 16 inputs, an output count that is not a multiple of 8 (3).
@@ -759,17 +761,7 @@ TEST(OnnxFold, PointwiseConvsAreReplacedAndTheOutputMatches) {
         const std::optional<std::string> replaced = replace_pointwise_convs(onnx);
         ASSERT_TRUE(replaced.has_value()) << what;
         EXPECT_EQ(op_types(*replaced).front(), kPointwiseOpType);
-        const int dims[4] = {1, spec.channels, spec.height, spec.width};
-        cv::Mat blob(4, dims, CV_32F);
-        cv::randu(blob, -3.0, 3.0);
-        const cv::Mat reference = forward(onnx, blob), out = forward(*replaced, blob);
-        ASSERT_EQ(out.total(), reference.total()) << what;
-        EXPECT_LE(cv::norm(out.reshape(1, 1), reference.reshape(1, 1), cv::NORM_INF), 1e-5) << what;
-        EXPECT_GT(cv::norm(out.reshape(1, 1), cv::NORM_INF), 0.5) << what;
-        double least = 0;
-        cv::minMaxIdx(out.reshape(1, 1), &least);
-        if (relu) EXPECT_GE(least, 0.0) << what;
-        else EXPECT_LT(least, 0.0) << what;
+        expect_same_output(onnx, *replaced, spec, 1e-5, what);
       }
   // Left alone: more than kPointwiseMaxInputs inputs, an output count that is not a multiple of 4,
   // depthwise 1 x 1 (C groups), strided, padded, 3 x 3, weights as an input.
