@@ -10,14 +10,23 @@ FeatureGrid::FeatureGrid(const std::vector<Eigen::Vector2d>& points, const std::
     : cols_(std::max(1, (width + cell_size - 1) / cell_size)),
       rows_(std::max(1, (height + cell_size - 1) / cell_size)),
       cell_(cell_size),
-      cells_(static_cast<size_t>(cols_ * rows_)),
-      points_(points),
-      levels_(levels) {
+      start_(static_cast<size_t>(cols_ * rows_) + 1, 0) {
+  // A counting sort by cell: count, prefix sums, then place in index order.
+  std::vector<int> cell_of(points.size(), -1);
   for (size_t i = 0; i < points.size(); ++i) {
     const int cx = static_cast<int>(std::floor(points[i].x() / cell_));
     const int cy = static_cast<int>(std::floor(points[i].y() / cell_));
     if (cx < 0 || cy < 0 || cx >= cols_ || cy >= rows_) continue;  // undistorted outside the image
-    cells_[static_cast<size_t>(cy * cols_ + cx)].push_back(static_cast<int>(i));
+    cell_of[i] = cy * cols_ + cx;
+    ++start_[static_cast<size_t>(cell_of[i]) + 1];
+  }
+  for (size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+  entries_.resize(static_cast<size_t>(start_.back()));
+  std::vector<int> next(start_.begin(), start_.end() - 1);
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (cell_of[i] < 0) continue;
+    entries_[static_cast<size_t>(next[static_cast<size_t>(cell_of[i])]++)] = {points[i].x(), points[i].y(),
+                                                                              static_cast<int>(i), levels[i]};
   }
 }
 
@@ -29,19 +38,21 @@ std::vector<int> FeatureGrid::in_area(double x, double y, double r, int min_leve
 
 void FeatureGrid::in_area(double x, double y, double r, int min_level, int max_level, std::vector<int>& out) const {
   out.clear();
-  if (cells_.empty()) return;
+  if (entries_.empty()) return;
   const int x0 = std::max(0, static_cast<int>(std::floor((x - r) / cell_)));
   const int x1 = std::min(cols_ - 1, static_cast<int>(std::floor((x + r) / cell_)));
   const int y0 = std::max(0, static_cast<int>(std::floor((y - r) / cell_)));
   const int y1 = std::min(rows_ - 1, static_cast<int>(std::floor((y + r) / cell_)));
-  for (int cy = y0; cy <= y1; ++cy)
-    for (int cx = x0; cx <= x1; ++cx)
-      for (int i : cell(cx, cy)) {
-        const int l = levels_[static_cast<size_t>(i)];
-        if (l < min_level || (max_level >= 0 && l > max_level)) continue;
-        const Eigen::Vector2d& p = points_[static_cast<size_t>(i)];
-        if (std::abs(p.x() - x) <= r && std::abs(p.y() - y) <= r) out.push_back(i);
-      }
+  if (x0 > x1 || y0 > y1) return;  // the area lies outside the image
+  for (int cy = y0; cy <= y1; ++cy) {
+    const int row = cy * cols_;
+    const Entry* e = entries_.data() + start_[static_cast<size_t>(row + x0)];
+    const Entry* end = entries_.data() + start_[static_cast<size_t>(row + x1 + 1)];
+    for (; e != end; ++e) {  // the cells x0..x1 of a row are one run
+      if (e->level < min_level || (max_level >= 0 && e->level > max_level)) continue;
+      if (std::abs(e->x - x) <= r && std::abs(e->y - y) <= r) out.push_back(e->index);
+    }
+  }
 }
 
 }  // namespace wardmap::slam

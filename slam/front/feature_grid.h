@@ -19,12 +19,18 @@ class FeatureGrid {
   void in_area(double x, double y, double radius, int min_level, int max_level, std::vector<int>& out) const;
 
  private:
-  const std::vector<int>& cell(int cx, int cy) const { return cells_[static_cast<size_t>(cy * cols_ + cx)]; }
+  // One keypoint as a cell holds it: position and level beside the index, so that a query reads
+  // each cell as one contiguous run.
+  struct Entry {
+    double x, y;
+    int index;
+    int level;
+  };
   int cols_ = 0, rows_ = 0;
   double cell_ = 20;
-  std::vector<std::vector<int>> cells_;
-  std::vector<Eigen::Vector2d> points_;
-  std::vector<int> levels_;
+  // Cell c holds entries_[start_[c] .. start_[c + 1]), in ascending keypoint index.
+  std::vector<int> start_;
+  std::vector<Entry> entries_;
 };
 
 }  // namespace wardmap::slam
