@@ -9,7 +9,7 @@
 namespace wardmap::slam {
 
 MapPoint::MapPoint(MapPointId id, const Eigen::Vector3d& position, KeyFrameId first_keyframe, double first_timestamp)
-    : id_(id), first_keyframe_(first_keyframe), position_(position), last_seen_(first_timestamp) {}
+    : last_seen_(first_timestamp), position_(position), id_(id), first_keyframe_(first_keyframe) {}
 
 namespace {
 

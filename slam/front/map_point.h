@@ -24,6 +24,21 @@ struct Observation {
 };
 
 class MapPoint {
+  // The fields the tracker reads for every point of its local map on every frame come first, so
+  // that they share the object's first two cache lines (build_local_map, visible_candidates).
+ public:
+  // Scratch for the tracker's local-map search (valid for the frame id stored beside it).
+  std::uint64_t track_frame_id = UINT64_MAX;  // frame that matched it (avoid duplicate search)
+  std::uint64_t local_frame_id = UINT64_MAX;  // frame whose local map holds it
+
+ private:
+  bool bad_ = false;
+  int visible_ = 1, found_ = 1;
+  double last_seen_ = 0;
+  Eigen::Vector3d position_;
+  Eigen::Vector3d normal_ = Eigen::Vector3d::Zero();
+  double min_distance_ = 0, max_distance_ = 0;
+
  public:
   MapPoint(MapPointId id, const Eigen::Vector3d& position, KeyFrameId first_keyframe, double first_timestamp);
 
@@ -76,22 +91,13 @@ class MapPoint {
   void replace_with(const std::shared_ptr<MapPoint>& other);
   std::shared_ptr<MapPoint> replaced_by() const { return replaced_by_.lock(); }
 
-  // Scratch for the tracker's local-map search (valid for the frame id stored beside it).
-  std::uint64_t track_frame_id = UINT64_MAX;  // frame that matched it (avoid duplicate search)
-  std::uint64_t local_frame_id = UINT64_MAX;  // frame whose local map holds it
-  std::uint64_t fuse_keyframe_id = UINT64_MAX;
+  std::uint64_t fuse_keyframe_id = UINT64_MAX;  // the mapper's fusion: keyframe that last took it
 
  private:
   MapPointId id_;
   KeyFrameId first_keyframe_;
-  Eigen::Vector3d position_;
   Observations observations_;
   cv::Mat descriptor_;
-  Eigen::Vector3d normal_ = Eigen::Vector3d::Zero();
-  double min_distance_ = 0, max_distance_ = 0;
-  int visible_ = 1, found_ = 1;
-  double last_seen_ = 0;
-  bool bad_ = false;
   std::weak_ptr<MapPoint> replaced_by_;
 };
 
