@@ -13,7 +13,8 @@ class FeatureGrid {
   FeatureGrid(const std::vector<Eigen::Vector2d>& points, const std::vector<int>& levels, int width, int height,
               int cell_size = 20);
   // Indices of the points within `radius` (L-inf) of (x, y) whose level is in [min_level, max_level]
-  // (max_level < 0: no upper bound).
+  // (max_level < 0: no upper bound), cell by cell (rows, then columns) and ascending within a cell:
+  // the matchers keep the first of equally good candidates, so this order is part of the contract.
   std::vector<int> in_area(double x, double y, double radius, int min_level = 0, int max_level = -1) const;
   // The same into `out` (cleared first), for loops that reuse one buffer instead of allocating per query.
   void in_area(double x, double y, double radius, int min_level, int max_level, std::vector<int>& out) const;
