@@ -3,30 +3,28 @@
 #include <algorithm>
 #include <cmath>
 
+#include "slam/front/counting_sort.h"
+
 namespace wardmap::slam {
 
 FeatureGrid::FeatureGrid(const std::vector<Eigen::Vector2d>& points, const std::vector<int>& levels, int width,
                          int height, int cell_size)
     : cols_(std::max(1, (width + cell_size - 1) / cell_size)),
       rows_(std::max(1, (height + cell_size - 1) / cell_size)),
-      cell_(cell_size),
-      start_(static_cast<size_t>(cols_ * rows_) + 1, 0) {
-  // A counting sort by cell: count, prefix sums, then place in index order.
+      cell_(cell_size) {
   std::vector<int> cell_of(points.size(), -1);
   for (size_t i = 0; i < points.size(); ++i) {
     const int cx = static_cast<int>(std::floor(points[i].x() / cell_));
     const int cy = static_cast<int>(std::floor(points[i].y() / cell_));
     if (cx < 0 || cy < 0 || cx >= cols_ || cy >= rows_) continue;  // undistorted outside the image
     cell_of[i] = cy * cols_ + cx;
-    ++start_[static_cast<size_t>(cell_of[i]) + 1];
   }
-  for (size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
-  entries_.resize(static_cast<size_t>(start_.back()));
-  std::vector<int> next(start_.begin(), start_.end() - 1);
-  for (size_t i = 0; i < points.size(); ++i) {
-    if (cell_of[i] < 0) continue;
-    entries_[static_cast<size_t>(next[static_cast<size_t>(cell_of[i])]++)] = {points[i].x(), points[i].y(),
-                                                                              static_cast<int>(i), levels[i]};
+  std::vector<int> order;
+  counting_sort(cell_of, cols_ * rows_, start_, order);
+  entries_.resize(order.size());
+  for (size_t p = 0; p < order.size(); ++p) {
+    const size_t i = static_cast<size_t>(order[p]);
+    entries_[p] = {points[i].x(), points[i].y(), order[p], levels[i]};
   }
 }
 

@@ -8,6 +8,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "slam/front/counting_sort.h"
 #include "slam/front/quadtree_distribution.h"
 
 namespace wardmap::slam {
@@ -161,18 +162,21 @@ const CentroidTables& centroid_tables() {
 }
 
 // Merges two lists of corners, each in raster order (by row, then column) and at distinct pixels,
-// into one in raster order: a counting sort by row, then a merge of the two parts of each row.
+// into one in raster order: a counting sort by row (a's corners before b's in each row), then a
+// merge of the two parts of each row.
 std::vector<cv::KeyPoint> merge_raster(const std::vector<cv::KeyPoint>& a, const std::vector<cv::KeyPoint>& b, int y0,
                                        int rows) {
-  std::vector<int> start(static_cast<size_t>(rows) + 1, 0), from_a(static_cast<size_t>(rows), 0);
-  for (const cv::KeyPoint& k : a) ++from_a[static_cast<size_t>(static_cast<int>(k.pt.y) - y0)];
-  for (int r = 0; r < rows; ++r) start[static_cast<size_t>(r) + 1] = from_a[static_cast<size_t>(r)];
-  for (const cv::KeyPoint& k : b) ++start[static_cast<size_t>(static_cast<int>(k.pt.y) - y0) + 1];
-  for (int r = 0; r < rows; ++r) start[static_cast<size_t>(r) + 1] += start[static_cast<size_t>(r)];
-  std::vector<cv::KeyPoint> out(a.size() + b.size());
-  std::vector<int> fill(start.begin(), start.end() - 1);
-  for (const cv::KeyPoint& k : a) out[static_cast<size_t>(fill[static_cast<size_t>(static_cast<int>(k.pt.y) - y0)]++)] = k;
-  for (const cv::KeyPoint& k : b) out[static_cast<size_t>(fill[static_cast<size_t>(static_cast<int>(k.pt.y) - y0)]++)] = k;
+  const auto row = [y0](const cv::KeyPoint& k) { return static_cast<int>(k.pt.y) - y0; };
+  std::vector<int> keys(a.size() + b.size()), from_a(static_cast<size_t>(rows), 0);
+  for (size_t i = 0; i < a.size(); ++i) ++from_a[static_cast<size_t>(keys[i] = row(a[i]))];
+  for (size_t i = 0; i < b.size(); ++i) keys[a.size() + i] = row(b[i]);
+  std::vector<int> start, order;
+  counting_sort(keys, rows, start, order);
+  std::vector<cv::KeyPoint> out(order.size());
+  for (size_t p = 0; p < order.size(); ++p) {
+    const size_t i = static_cast<size_t>(order[p]);
+    out[p] = i < a.size() ? a[i] : b[i - a.size()];
+  }
   auto by_x = [](const cv::KeyPoint& p, const cv::KeyPoint& q) { return p.pt.x < q.pt.x; };
   for (int r = 0; r < rows; ++r) {
     const auto first = out.begin() + start[static_cast<size_t>(r)], last = out.begin() + start[static_cast<size_t>(r) + 1];

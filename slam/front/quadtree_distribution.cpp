@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "slam/front/counting_sort.h"
+
 namespace wardmap::slam {
 
 namespace {
@@ -59,30 +61,20 @@ std::vector<cv::KeyPoint> distribute_quadtree(const std::vector<cv::KeyPoint>& k
   const int n_init = std::max(1, static_cast<int>(std::lround(region.width / std::max(region.height, 1.0f))));
   const float w = region.width / n_init;
   std::vector<int> column(static_cast<size_t>(n));
-  std::vector<int> count(static_cast<size_t>(n_init), 0);
-  for (int k = 0; k < n; ++k) {
-    const int i = std::clamp(static_cast<int>((pts[static_cast<size_t>(k)].x - region.x) / w), 0, n_init - 1);
-    column[static_cast<size_t>(k)] = i;
-    ++count[static_cast<size_t>(i)];
-  }
-  std::vector<int> index(static_cast<size_t>(n)), scratch(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k)
+    column[static_cast<size_t>(k)] =
+        std::clamp(static_cast<int>((pts[static_cast<size_t>(k)].x - region.x) / w), 0, n_init - 1);
+  std::vector<int> column_start, index;
+  counting_sort(column, n_init, column_start, index);
+  std::vector<int> scratch(static_cast<size_t>(n));
   std::vector<unsigned char> quadrant(static_cast<size_t>(n));
   std::vector<Node> nodes;
-  {
-    std::vector<int> fill(static_cast<size_t>(n_init));
-    int start = 0;
-    for (int i = 0; i < n_init; ++i) {
-      fill[static_cast<size_t>(i)] = start;
-      if (count[static_cast<size_t>(i)] > 0) {
-        Node node;
-        node.box = cv::Rect2f(region.x + i * w, region.y, w, region.height);
-        node.begin = start;
-        node.end = start + count[static_cast<size_t>(i)];
-        nodes.push_back(node);
-      }
-      start += count[static_cast<size_t>(i)];
-    }
-    for (int k = 0; k < n; ++k) index[static_cast<size_t>(fill[static_cast<size_t>(column[static_cast<size_t>(k)])]++)] = k;
+  for (int i = 0; i < n_init; ++i) {
+    Node node;
+    node.box = cv::Rect2f(region.x + i * w, region.y, w, region.height);
+    node.begin = column_start[static_cast<size_t>(i)];
+    node.end = column_start[static_cast<size_t>(i) + 1];
+    if (node.size() > 0) nodes.push_back(node);
   }
 
   std::vector<Node> next;

@@ -1,0 +1,16 @@
+#include "slam/front/counting_sort.h"
+
+namespace wardmap::slam {
+
+void counting_sort(const std::vector<int>& keys, int n_buckets, std::vector<int>& start, std::vector<int>& order) {
+  start.assign(static_cast<size_t>(n_buckets) + 1, 0);
+  for (int k : keys)
+    if (k >= 0) ++start[static_cast<size_t>(k) + 1];
+  for (size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
+  order.resize(static_cast<size_t>(start.back()));
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (size_t i = 0; i < keys.size(); ++i)
+    if (keys[i] >= 0) order[static_cast<size_t>(fill[static_cast<size_t>(keys[i])]++)] = static_cast<int>(i);
+}
+
+}  // namespace wardmap::slam
