@@ -63,8 +63,12 @@ void MapPoint::update_descriptor() {
       best = i;
     }
   }
-  descriptor_ = cv::Mat(1, 32, CV_8U);
-  std::copy(ds[best], ds[best] + 32, descriptor_.ptr<uchar>());
+  set_descriptor(ds[best]);
+}
+
+void MapPoint::set_descriptor(const uchar* d) {
+  std::copy(d, d + descriptor_.size(), descriptor_.begin());
+  has_descriptor_ = true;
 }
 
 void MapPoint::update_normal_and_depth() {

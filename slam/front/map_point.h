@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <opencv2/core.hpp>
@@ -25,8 +26,9 @@ struct Observation {
 
 class MapPoint {
   // The fields the tracker reads for every point of its local map on every frame come first: the
-  // object's first 104 bytes (build_local_map, visible_candidates), instead of bytes spread over
-  // all 264 (a cache miss per point was most of build_local_map's time).
+  // object's first 104 bytes (build_local_map, visible_candidates), then the descriptor the
+  // projection search reads (bytes 104-137 of 200). They were spread over 264 bytes, and a cache
+  // miss per point was most of build_local_map's time.
  public:
   // Scratch for the tracker's local-map search (valid for the frame id stored beside it).
   std::uint64_t track_frame_id = UINT64_MAX;  // frame that matched it (avoid duplicate search)
@@ -39,6 +41,10 @@ class MapPoint {
   Eigen::Vector3d position_;
   Eigen::Vector3d normal_ = Eigen::Vector3d::Zero();
   double min_distance_ = 0, max_distance_ = 0;
+  // The representative descriptor, inline: a cv::Mat would add its header and a heap block to
+  // each read.
+  bool has_descriptor_ = false;
+  std::array<uchar, 32> descriptor_{};
 
  public:
   MapPoint(MapPointId id, const Eigen::Vector3d& position, KeyFrameId first_keyframe, double first_timestamp);
@@ -61,8 +67,9 @@ class MapPoint {
 
   // Representative descriptor: the observation's descriptor with the least median distance to the others.
   void update_descriptor();
-  const cv::Mat& descriptor() const { return descriptor_; }
-  void set_descriptor(const cv::Mat& d) { descriptor_ = d; }
+  // Its 32 bytes, or nullptr before the first update or set.
+  const uchar* descriptor() const { return has_descriptor_ ? descriptor_.data() : nullptr; }
+  void set_descriptor(const uchar* d);
 
   // Mean viewing direction and [min, max] recognisable distance from the observations.
   void update_normal_and_depth();
@@ -96,7 +103,6 @@ class MapPoint {
   MapPointId id_;
   KeyFrameId first_keyframe_;
   Observations observations_;
-  cv::Mat descriptor_;
   std::weak_ptr<MapPoint> replaced_by_;
 };
 

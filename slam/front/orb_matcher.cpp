@@ -58,7 +58,7 @@ int OrbMatcher::search_by_projection(Frame& current, const Frame& last, double r
     const double r = radius * cf.pyramid->scale[static_cast<size_t>(level)];
     cf.grid.in_area(uv.x(), uv.y(), r, std::max(0, level - 1), level + 1, idx);
     if (idx.empty()) continue;
-    const uchar* d = mp->descriptor().empty() ? lf.descriptor(i) : mp->descriptor().ptr<uchar>();
+    const uchar* d = mp->descriptor() ? mp->descriptor() : lf.descriptor(i);
     const double ur = uv.x() - cf.bf / pc.z();
     Best best;
     for (int j : idx) {
@@ -91,7 +91,7 @@ int OrbMatcher::search_by_projection(Frame& current, const std::vector<Projectio
     const double r = radius * view_factor * cf.pyramid->scale[static_cast<size_t>(c.level)];
     cf.grid.in_area(c.pixel.x(), c.pixel.y(), r, c.level - 1, c.level, idx);
     if (idx.empty()) continue;
-    const uchar* d = mp.descriptor().ptr<uchar>();
+    const uchar* d = mp.descriptor();
     Best best;
     for (int j : idx) {
       const size_t js = static_cast<size_t>(j);
@@ -295,7 +295,7 @@ int OrbMatcher::fuse(const std::shared_ptr<KeyFrame>& kf, const std::vector<std:
       } else if (e2 * inv_s2 > chi2_mono) {
         continue;
       }
-      best.offer(descriptor_distance(mp->descriptor().ptr<uchar>(), f.descriptor(js)), j, kl);
+      best.offer(descriptor_distance(mp->descriptor(), f.descriptor(js)), j, kl);
     }
     if (!descriptor_matches(best.dist, o_.th_low)) continue;
     const size_t j = static_cast<size_t>(best.idx);

@@ -32,7 +32,7 @@ std::vector<std::pair<int, std::shared_ptr<MapPoint>>> create_depth_points(const
     auto mp = submap.create_map_point(unproject_keypoint(f, s, kf->pose_wc(), camera), *kf);
     mp->add_observation(kf, i);
     kf->set_map_point(s, mp);
-    mp->set_descriptor(f.descriptors.row(i).clone());
+    mp->set_descriptor(f.descriptors.ptr<uchar>(static_cast<int>(i)));
     mp->update_normal_and_depth();
     created.emplace_back(i, mp);
   }

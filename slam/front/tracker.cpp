@@ -371,7 +371,7 @@ int Tracker::extend_by_flow(Frame& frame) {
   std::vector<Eigen::Vector2d> predicted;
   for (size_t i = 0; i < last_frame_->size(); ++i) {
     const auto& mp = last_frame_->map_points[i];
-    if (!mp || mp->bad() || mp->descriptor().empty() || last_frame_->outlier[i] || matched.count(mp.get())) continue;
+    if (!mp || mp->bad() || !mp->descriptor() || last_frame_->outlier[i] || matched.count(mp.get())) continue;
     if (i >= lf.detected() && lf.flow_age[i - lf.detected()] >= t.flow_max_age) continue;
     const Eigen::Vector3d pc = frame.pose_cw() * mp->position();
     if (pc.z() <= 0) continue;
@@ -468,7 +468,7 @@ int Tracker::extend_by_flow(Frame& frame) {
                                                                 t.max_depth, t.max_depth_step);
     f->depth.push_back(d);
     f->right_u.push_back(d > 0 ? static_cast<float>(und.x() - f->bf / d) : -1.f);
-    f->descriptors.push_back(mp->descriptor().clone());
+    f->descriptors.push_back(cv::Mat(1, 32, CV_8U, const_cast<uchar*>(mp->descriptor())));  // copies
     f->flow_age.push_back(i >= lf.detected() ? lf.flow_age[i - lf.detected()] + 1 : 1);
     assigned.emplace_back(first + appended++, mp);
   }

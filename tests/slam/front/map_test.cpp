@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+
 #include "tests/support/test_camera.h"
 #include "slam/front/bounded_queue.h"
 #include "slam/front/front_process.h"
@@ -157,6 +160,43 @@ TEST(Submap, ReplacingAPointMovesItsObservations) {
   map.erase_map_point(a);
   EXPECT_EQ(k0->map_point(3), nullptr);
   EXPECT_EQ(k1->map_point(5), nullptr);
+}
+
+TEST(MapPoint, RepresentativeDescriptorHasTheLeastMedianDistanceToTheOthers) {
+  // Five keyframes see the point at keypoints 0..4, whose descriptors are set to X with one bit
+  // flipped (three of them), X itself (the third) and X inverted: X's median distance is 1, the
+  // others' 2 or more.
+  auto f = std::make_shared<FrameFeatures>(*features());
+  f->descriptors = f->descriptors.clone();
+  std::array<uchar, 32> x{};
+  for (size_t b = 0; b < x.size(); ++b) x[b] = static_cast<uchar>(37 * b + 11);
+  const std::array<int, 5> flipped_bit{5, 77, -1, 200, -2};  // -1: X, -2: X inverted
+  for (int i = 0; i < 5; ++i) {
+    uchar* d = f->descriptors.ptr<uchar>(i);
+    std::copy(x.begin(), x.end(), d);
+    const int bit = flipped_bit[static_cast<size_t>(i)];
+    if (bit >= 0) d[bit / 8] ^= static_cast<uchar>(1 << (bit % 8));
+    if (bit == -2)
+      for (int b = 0; b < 32; ++b) d[b] = static_cast<uchar>(~d[b]);
+  }
+  Submap map(0);
+  std::vector<std::shared_ptr<KeyFrame>> kfs;
+  for (int k = 0; k < 5; ++k) {
+    Frame frame(static_cast<std::uint64_t>(k), k * 0.1, f);
+    kfs.push_back(map.create_keyframe(frame));
+  }
+  auto mp = map.create_map_point(Eigen::Vector3d(0, 0, 2), *kfs[0]);
+  EXPECT_EQ(mp->descriptor(), nullptr);
+  for (int k = 0; k < 5; ++k) mp->add_observation(kfs[static_cast<size_t>(k)], k);
+  mp->update_descriptor();
+  ASSERT_NE(mp->descriptor(), nullptr);
+  EXPECT_TRUE(std::equal(x.begin(), x.end(), mp->descriptor()));
+
+  // set_descriptor copies: changing the source afterwards leaves the point's descriptor alone.
+  std::array<uchar, 32> y = x;
+  mp->set_descriptor(y.data());
+  y[0] ^= 1;
+  EXPECT_TRUE(std::equal(x.begin(), x.end(), mp->descriptor()));
 }
 
 TEST(Triangulation, RecoversAPointFromTwoViews) {
