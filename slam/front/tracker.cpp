@@ -258,11 +258,7 @@ bool Tracker::create_initial_map(Frame& first, Frame& second, const std::vector<
     kf2->compute_words(*vocabulary_);
   }
   unindexed_.push_back(kf1);
-  unindexed_.push_back(kf2);
-  reference_ = last_keyframe_ = kf2;
-  last_keyframe_frame_ = second.id();
-  last_keyframe_time_ = second.timestamp();
-  second.reference_keyframe = kf2;
+  adopt_keyframe(second, kf2);
   mapper_.enqueue(kf1);
   mapper_.enqueue(kf2);
   mapper_.process_queued();
@@ -277,11 +273,7 @@ bool Tracker::initialise_rgbd(Frame& frame) {
   auto kf = submap_->create_keyframe(frame);
   auto created = create_depth_points(kf, *submap_, camera_, options_.tracking, /*every_depth=*/true);
   for (const auto& [i, mp] : created) frame.map_points[static_cast<size_t>(i)] = mp;
-  unindexed_.push_back(kf);
-  reference_ = last_keyframe_ = kf;
-  last_keyframe_frame_ = frame.id();
-  last_keyframe_time_ = frame.timestamp();
-  frame.reference_keyframe = kf;
+  adopt_keyframe(frame, kf);
   mapper_.enqueue(kf);
   mapper_.process_queued();
   return true;
@@ -532,13 +524,17 @@ void Tracker::insert_keyframe(Frame& frame) {
     frame.map_points[static_cast<size_t>(i)] = mp;
     frame.outlier[static_cast<size_t>(i)] = 0;
   }
+  adopt_keyframe(frame, kf);
+  if (!mapper_.enqueue(kf)) return;  // mapper saturated: the keyframe still serves as reference
+  mapper_.process_queued();          // inline mapping in this milestone
+}
+
+void Tracker::adopt_keyframe(Frame& frame, const std::shared_ptr<KeyFrame>& kf) {
   unindexed_.push_back(kf);
   reference_ = last_keyframe_ = kf;
   last_keyframe_frame_ = frame.id();
   last_keyframe_time_ = frame.timestamp();
   frame.reference_keyframe = kf;
-  if (!mapper_.enqueue(kf)) return;  // mapper saturated: the keyframe still serves as reference
-  mapper_.process_queued();          // inline mapping in this milestone
 }
 
 void Tracker::index_new_keyframes(bool compute_missing) {

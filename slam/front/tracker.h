@@ -82,6 +82,9 @@ class Tracker {
   bool plausible_recovery(const Frame& frame) const;
   int optimise_frame_pose(Frame& frame);  // returns inliers; flags outliers
   void insert_keyframe(Frame& frame);
+  // Makes `kf`, created from `frame`, the reference and newest keyframe, and queues it for the
+  // place database.
+  void adopt_keyframe(Frame& frame, const std::shared_ptr<KeyFrame>& kf);
   KeyFrameEvidence evidence(const Frame& frame, int inliers) const;
 
   FrontOptions options_;
