@@ -168,7 +168,10 @@ std::vector<cv::KeyPoint> merge_raster(const std::vector<cv::KeyPoint>& a, const
                                        int rows) {
   const auto row = [y0](const cv::KeyPoint& k) { return static_cast<int>(k.pt.y) - y0; };
   std::vector<int> keys(a.size() + b.size()), from_a(static_cast<size_t>(rows), 0);
-  for (size_t i = 0; i < a.size(); ++i) ++from_a[static_cast<size_t>(keys[i] = row(a[i]))];
+  for (size_t i = 0; i < a.size(); ++i) {
+    keys[i] = row(a[i]);
+    ++from_a[static_cast<size_t>(keys[i])];
+  }
   for (size_t i = 0; i < b.size(); ++i) keys[a.size() + i] = row(b[i]);
   std::vector<int> start, order;
   counting_sort(keys, rows, start, order);
