@@ -8,9 +8,11 @@ void counting_sort(const std::vector<int>& keys, int n_buckets, std::vector<int>
     if (k >= 0) ++start[static_cast<size_t>(k) + 1];
   for (size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
   order.resize(static_cast<size_t>(start.back()));
-  std::vector<int> fill(start.begin(), start.end() - 1);
+  // Placing advances start[k] to bucket k's end, which is start[k + 1] before placing: shift back.
   for (size_t i = 0; i < keys.size(); ++i)
-    if (keys[i] >= 0) order[static_cast<size_t>(fill[static_cast<size_t>(keys[i])]++)] = static_cast<int>(i);
+    if (keys[i] >= 0) order[static_cast<size_t>(start[static_cast<size_t>(keys[i])]++)] = static_cast<int>(i);
+  for (size_t b = start.size() - 1; b > 0; --b) start[b] = start[b - 1];
+  start[0] = 0;
 }
 
 }  // namespace wardmap::slam

@@ -6,6 +6,8 @@
 
 namespace wardmap::slam {
 
+constexpr int kDescriptorBytes = 32;  // an ORB (rBRIEF) descriptor: 256 bits
+
 // Bit count of a 64-bit word without relying on the POPCNT instruction (the build targets generic x86-64).
 inline int popcount64(std::uint64_t x) {
   x = x - ((x >> 1) & 0x5555555555555555ULL);
@@ -16,7 +18,7 @@ inline int popcount64(std::uint64_t x) {
 
 inline int descriptor_distance(const unsigned char* a, const unsigned char* b) {
   int d = 0;
-  for (int i = 0; i < 4; ++i) {
+  for (int i = 0; i < kDescriptorBytes / 8; ++i) {
     std::uint64_t x, y;
     std::memcpy(&x, a + 8 * i, 8);
     std::memcpy(&y, b + 8 * i, 8);

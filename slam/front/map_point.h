@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "slam/front/descriptor_distance.h"
 #include "slam/front/scale_pyramid.h"
 
 namespace wardmap::slam {
@@ -44,7 +45,7 @@ class MapPoint {
   // The representative descriptor, inline: a cv::Mat would add its header and a heap block to
   // each read.
   bool has_descriptor_ = false;
-  std::array<uchar, 32> descriptor_{};
+  std::array<uchar, kDescriptorBytes> descriptor_{};
 
  public:
   MapPoint(MapPointId id, const Eigen::Vector3d& position, KeyFrameId first_keyframe, double first_timestamp);
@@ -67,7 +68,7 @@ class MapPoint {
 
   // Representative descriptor: the observation's descriptor with the least median distance to the others.
   void update_descriptor();
-  // Its 32 bytes, or nullptr before the first update or set.
+  // Its kDescriptorBytes bytes, or nullptr before the first update or set.
   const uchar* descriptor() const { return has_descriptor_ ? descriptor_.data() : nullptr; }
   void set_descriptor(const uchar* d);
 

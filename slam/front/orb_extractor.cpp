@@ -9,6 +9,7 @@
 #endif
 
 #include "slam/front/counting_sort.h"
+#include "slam/front/descriptor_distance.h"
 #include "slam/front/quadtree_distribution.h"
 
 namespace wardmap::slam {
@@ -16,7 +17,6 @@ namespace wardmap::slam {
 namespace {
 constexpr int kPatchSize = 31;  // rBRIEF patch (pixels)
 constexpr int kHalfPatch = 15;  // orientation disc radius
-constexpr int kDescriptorBytes = 32;
 
 // The published ORB test pattern (Rublee et al. 2011): 256 pairs of points (x0, y0, x1, y1) in a 31x31
 // patch; bit i of a descriptor is I(p0) < I(p1). The values are the bit_pattern_31_ table of OpenCV's
@@ -167,11 +167,8 @@ const CentroidTables& centroid_tables() {
 std::vector<cv::KeyPoint> merge_raster(const std::vector<cv::KeyPoint>& a, const std::vector<cv::KeyPoint>& b, int y0,
                                        int rows) {
   const auto row = [y0](const cv::KeyPoint& k) { return static_cast<int>(k.pt.y) - y0; };
-  std::vector<int> keys(a.size() + b.size()), from_a(static_cast<size_t>(rows), 0);
-  for (size_t i = 0; i < a.size(); ++i) {
-    keys[i] = row(a[i]);
-    ++from_a[static_cast<size_t>(keys[i])];
-  }
+  std::vector<int> keys(a.size() + b.size());
+  for (size_t i = 0; i < a.size(); ++i) keys[i] = row(a[i]);
   for (size_t i = 0; i < b.size(); ++i) keys[a.size() + i] = row(b[i]);
   std::vector<int> start, order;
   counting_sort(keys, rows, start, order);
@@ -181,10 +178,12 @@ std::vector<cv::KeyPoint> merge_raster(const std::vector<cv::KeyPoint>& a, const
     out[p] = i < a.size() ? a[i] : b[i - a.size()];
   }
   auto by_x = [](const cv::KeyPoint& p, const cv::KeyPoint& q) { return p.pt.x < q.pt.x; };
+  const auto from_a = [&a](int i) { return static_cast<size_t>(i) < a.size(); };
   for (int r = 0; r < rows; ++r) {
-    const auto first = out.begin() + start[static_cast<size_t>(r)], last = out.begin() + start[static_cast<size_t>(r) + 1];
-    const auto middle = first + from_a[static_cast<size_t>(r)];
-    if (middle != first && middle != last) std::inplace_merge(first, middle, last, by_x);
+    const int s0 = start[static_cast<size_t>(r)], s1 = start[static_cast<size_t>(r) + 1];
+    // The sort is stable, so a row's corners from a come first: the merge's middle.
+    const int sm = static_cast<int>(std::partition_point(order.begin() + s0, order.begin() + s1, from_a) - order.begin());
+    if (sm != s0 && sm != s1) std::inplace_merge(out.begin() + s0, out.begin() + sm, out.begin() + s1, by_x);
   }
   return out;
 }

@@ -116,7 +116,7 @@ int OrbMatcher::search_by_knn(const KeyFrame& keyframe, Frame& frame) const {
   for (size_t i = 0; i < keyframe.size(); ++i)
     if (keyframe.map_point(i) && !keyframe.map_point(i)->bad()) rows.push_back(static_cast<int>(i));
   if (rows.empty() || ff.descriptors.empty()) return 0;
-  cv::Mat query(static_cast<int>(rows.size()), 32, CV_8U);
+  cv::Mat query(static_cast<int>(rows.size()), kDescriptorBytes, CV_8U);
   for (size_t r = 0; r < rows.size(); ++r) kf.descriptors.row(rows[r]).copyTo(query.row(static_cast<int>(r)));
   cv::BFMatcher bf(cv::NORM_HAMMING);
   std::vector<std::vector<cv::DMatch>> knn;

@@ -6,6 +6,7 @@
 #include <opencv2/video/tracking.hpp>
 #include <unordered_set>
 
+#include "slam/front/descriptor_distance.h"
 #include "slam/front/keyframe_policy.h"
 #include "slam/front/local_bundle_adjustment.h"
 #include "slam/front/local_map.h"
@@ -460,7 +461,7 @@ int Tracker::extend_by_flow(Frame& frame) {
                                                                 t.max_depth, t.max_depth_step);
     f->depth.push_back(d);
     f->right_u.push_back(d > 0 ? static_cast<float>(und.x() - f->bf / d) : -1.f);
-    f->descriptors.push_back(cv::Mat(1, 32, CV_8U, const_cast<uchar*>(mp->descriptor())));  // copies
+    f->descriptors.push_back(cv::Mat(1, kDescriptorBytes, CV_8U, const_cast<uchar*>(mp->descriptor())));  // copies
     f->flow_age.push_back(i >= lf.detected() ? lf.flow_age[i - lf.detected()] + 1 : 1);
     assigned.emplace_back(first + appended++, mp);
   }
