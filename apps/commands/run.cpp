@@ -10,6 +10,7 @@
 #include "apps/semantic_job.h"
 #include "apps/slam_job.h"
 #include "slam/core/errors.h"
+#include "slam/io/text_file.h"
 
 namespace wardmap::apps {
 
@@ -29,8 +30,7 @@ struct RunArgs {
 void run(RunArgs& a) {
   a.job.reader = reader_options(a.reader);
   // Checked before the run, not when its outputs are written at the end.
-  if (!a.job.out.empty() && std::filesystem::exists(a.job.out) && !std::filesystem::is_directory(a.job.out))
-    throw InputError(a.job.out.string(), "--out names a file; it must be a folder (new or existing)");
+  if (!a.job.out.empty()) slam::io::check_output_folder(a.job.out, "--out");
   if (a.poses == "slam") {
     spdlog::info("run: {} (SLAM front-process{})", a.job.sequence.string(), a.mode.empty() ? "" : ", " + a.mode);
     SlamJob s{a.job.sequence, a.job.settings, a.job.out, a.mode, a.job.progress, a.deterministic, a.vocabulary,

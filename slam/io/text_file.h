@@ -21,6 +21,14 @@ long long parse_int(const std::string& token, const std::filesystem::path& file,
 // Writes contents to `file` through `file.tmp.<pid>` and a rename; creates parent folders.
 void write_file_atomic(const std::filesystem::path& file, const std::string& contents);
 
+// Checked before a long run whose outputs are written at its end, so that a wrong --out is told
+// at once rather than after the run it would lose. `option` names the flag in the message ("--out").
+// Neither makes anything. check_output_folder throws InputError(folder, ...) unless `folder` is a
+// folder the process can write into or can make (its nearest existing ancestor is such a folder).
+void check_output_folder(const std::filesystem::path& folder, const std::string& option);
+// The same for a file written at the end: not a folder, in a folder that is or can be made writable.
+void check_output_file(const std::filesystem::path& file, const std::string& option);
+
 // Throws InputError(file, "timestamp ... is not after the previous one ...", line) on t <= previous.
 void check_increasing(double t, double previous, const std::filesystem::path& file, long line);
 

@@ -158,6 +158,26 @@ TEST(CliBadInput, OutIsAFile) {
                           "out.txt: --out names a file");
 }
 
+// An --out that cannot be made is reported before the run, not after it at the cost of its results;
+// so is vocabulary train's, before the features and the training. Nothing is made or changed.
+TEST(CliBadInput, OutCannotBeMade) {
+  const fs::path root = scratch_dir();
+  make_tum(root);
+  write_text(root / "out.txt", "not a folder");
+  const std::string in_the_way = "cannot be made: '" + (root / "out.txt").string() + "' is a file";
+  for (const char* poses : {"slam", "gt"}) {
+    const CliResult r = wardmap_cli("run " + shq(root) + " --poses " + poses + " --out " + shq(root / "out.txt" / "run"));
+    expect_one_line_error(r, "out.txt/run: --out: " + in_the_way);
+    EXPECT_EQ(r.output.find("frames"), std::string::npos) << "it ran first:\n" << r.output;
+  }
+  expect_one_line_error(wardmap_cli("vocabulary train " + shq(root) + " --out " + shq(root / "out.txt" / "words.bin")),
+                        in_the_way);
+  expect_one_line_error(wardmap_cli("vocabulary train " + shq(root) + " --out " + shq(root)),
+                        "--out names a folder; it must be a file");
+  std::ifstream in(root / "out.txt");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "not a folder");
+}
+
 // A mistyped sequence path is reported as missing, not as a missing calibration; a misspelt
 // settings key is named with its line.
 TEST(CliBadInput, MissingSequenceAndUnknownSettingsKey) {
