@@ -80,10 +80,11 @@ struct TrackingOptions {
   // The last frame's map points that the descriptor searches missed are followed into the frame by
   // pyramidal Lucas-Kanade flow (forward-backward checked, gated by the point's projection) and
   // observed there, so that points whose corner FAST does not find again or whose descriptor changed
-  // live longer (docs/EXPERIMENTS.md, "Following map points by optical flow"). On in RGB-D, whose
-  // 15 ms budget holds its cost on ordinary hours (1.2-2.2x in the benchmark; over 15 ms on the
-  // slowest); off in monocular, whose 10 ms does not.
-  bool flow_extend = true;              // tracking.flow_extend: RGB-D
+  // live longer (docs/EXPERIMENTS.md, "Following map points by optical flow"). Off by default in both
+  // modes: it lowers the drift of --deterministic synthetic runs, but not of ordinary (threaded) ones
+  // or of 7-Scenes, and costs 1.5-1.7x the tracking time (RGB-D: 12-13 ms a frame against 18-21 ms on
+  // the slow hours of 2026-12-01/02, over the 15 ms target; "The flow off in RGB-D again").
+  bool flow_extend = false;             // tracking.flow_extend: RGB-D
   bool flow_extend_mono = false;        // tracking.flow_extend_mono
   bool flow(bool monocular) const { return monocular ? flow_extend_mono : flow_extend; }
   double flow_max_fb_error = 0.5;       // tracking.flow_max_fb_error (px): forward-backward check

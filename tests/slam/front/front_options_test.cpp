@@ -48,15 +48,19 @@ TEST(FrontOptions, TrackingAndMappingSectionsOverrideDefaults) {
   EXPECT_EQ(FrontOptions{}.tracking.pose_solver, "ceres");
 }
 
-// The optical flow runs by default in RGB-D only; each mode has its own key.
-TEST(FrontOptions, FlowIsOnInRgbdAndOffInMonocularByDefault) {
+// The optical flow is off by default; each mode has its own key.
+TEST(FrontOptions, FlowIsOffByDefaultAndHasAKeyPerMode) {
   const FrontOptions d = load_front_options(io::parse_settings(kBase, "t.yaml"));
-  EXPECT_TRUE(d.tracking.flow(false));
+  EXPECT_FALSE(d.tracking.flow(false));
   EXPECT_FALSE(d.tracking.flow(true));
-  const FrontOptions o = load_front_options(
-      io::parse_settings(std::string(kBase) + "tracking:\n  flow_extend: false\n  flow_extend_mono: true\n", "t.yaml"));
-  EXPECT_FALSE(o.tracking.flow(false));
-  EXPECT_TRUE(o.tracking.flow(true));
+  const FrontOptions rgbd = load_front_options(
+      io::parse_settings(std::string(kBase) + "tracking:\n  flow_extend: true\n", "t.yaml"));
+  EXPECT_TRUE(rgbd.tracking.flow(false));
+  EXPECT_FALSE(rgbd.tracking.flow(true));
+  const FrontOptions mono = load_front_options(
+      io::parse_settings(std::string(kBase) + "tracking:\n  flow_extend_mono: true\n", "t.yaml"));
+  EXPECT_FALSE(mono.tracking.flow(false));
+  EXPECT_TRUE(mono.tracking.flow(true));
 }
 
 TEST(FrontOptions, OrbSlamStereoKeysSetTheVirtualBaselineAndCloseDepth) {
