@@ -81,9 +81,9 @@ struct TrackingOptions {
   // pyramidal Lucas-Kanade flow (forward-backward checked, gated by the point's projection) and
   // observed there, so that points whose corner FAST does not find again or whose descriptor changed
   // live longer (docs/EXPERIMENTS.md, "Following map points by optical flow"). Off by default in both
-  // modes: it lowers the drift of --deterministic synthetic runs, but not of ordinary (threaded) ones
-  // or of 7-Scenes, and costs 1.5-1.7x the tracking time (RGB-D: 12-13 ms a frame against 18-21 ms on
-  // the slow hours of 2026-12-01/02, over the 15 ms target; "The flow off in RGB-D again").
+  // modes: it costs 1.2-2.2x the tracking time (RGB-D: 18-21 ms a frame against 12-13 ms on the slow
+  // hours of 2026-12-01/02, over the 15 ms target), and in RGB-D it lowers the drift of --deterministic
+  // synthetic runs only, not of ordinary (threaded) ones nor on 7-Scenes ("The flow off in RGB-D again").
   bool flow_extend = false;             // tracking.flow_extend: RGB-D
   bool flow_extend_mono = false;        // tracking.flow_extend_mono
   bool flow(bool monocular) const { return monocular ? flow_extend_mono : flow_extend; }

@@ -87,8 +87,8 @@ void write_file_atomic(const fs::path& file, const std::string& contents) {
 
 namespace {
 
-// Throws InputError(path, ...) unless the folder `path` would be made in, or is in, is writable: the
-// nearest existing ancestor of `path` (itself left out) must be a folder the process can write into.
+// Throws InputError(path, ...) unless `path` can be made where it is: its nearest existing ancestor
+// (`path` itself left out) must be a folder the process can write into.
 void check_can_make(const fs::path& path, const std::string& option) {
   std::error_code ec;
   fs::path existing = path.parent_path();
