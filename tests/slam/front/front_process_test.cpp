@@ -142,7 +142,9 @@ TEST(FrontProcess, RelocalisesInTheSameSubmapAfterBlindFrames) {
 }
 
 // The same aisle with local mapping on its own thread (what `wardmap run` uses); under
-// `scripts/test.sh --tsan` this is the in-process check of the tracker / mapper locking.
+// `scripts/test.sh --tsan` this is the in-process check of the tracker / mapper locking. The optical
+// flow (an option, off by default) is on here, so that the thread sanitizer also sees its reads of
+// the map points the mapper writes; CliPipeline.ThreadedRgbdRunIsAccurate runs the defaults threaded.
 TEST(FrontProcess, TracksWithTheMapperOnItsOwnThread) {
   const fs::path bin = wardmap_binary();
   if (!fs::exists(bin)) GTEST_SKIP() << "wardmap executable not built: " << bin;
@@ -156,6 +158,7 @@ TEST(FrontProcess, TracksWithTheMapperOnItsOwnThread) {
   const io::Settings settings = io::load_settings(seq / "settings.yaml");
   FrontOptions options = load_front_options(settings);
   options.mapping_thread = true;
+  options.tracking.flow_extend = true;
   io::ReaderOptions ro;
   ro.depth_factor = settings.camera.depth_map_factor;
   auto reader = io::open_sequence(seq, ro);
@@ -168,6 +171,11 @@ TEST(FrontProcess, TracksWithTheMapperOnItsOwnThread) {
   front.finish();
   EXPECT_LE(max_queue, static_cast<size_t>(options.mapping.queue_capacity));
   EXPECT_GE(front.mapper_stats().keyframes, 2);
+  size_t followed = 0;  // keypoints that the flow placed in the keyframes, observing a point
+  for (const auto& [id, kf] : front.submap().keyframes())
+    for (size_t i = kf->features().detected(); !kf->bad() && i < kf->features().size(); ++i)
+      if (kf->map_points()[i] && !kf->map_points()[i]->bad()) ++followed;
+  EXPECT_GT(followed, 0u) << "the flow followed no point into a keyframe";
   const Trajectory est = front.trajectory();
   const auto pairs = eval::associate(reader->ground_truth(), est, eval::AssociationOptions{});
   const eval::AteResult ate = eval::compute_ate(reader->ground_truth(), est, pairs, eval::Alignment::SE3);
