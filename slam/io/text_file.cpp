@@ -87,15 +87,16 @@ void write_file_atomic(const fs::path& file, const std::string& contents) {
 
 namespace {
 
-// Throws InputError(path, ...) unless `path` can be made where it is: its nearest existing ancestor
-// (`path` itself left out) must be a folder the process can write into.
-void check_can_make(const fs::path& path, const std::string& option) {
+// Throws InputError(path, ...) unless `existing`, the nearest existing one of `path` and its
+// ancestors, is a folder the process can write into (where `path` is, or would be made).
+void check_writable_from(const fs::path& path, fs::path existing, const std::string& option) {
   std::error_code ec;
-  fs::path existing = path.parent_path();
   while (!existing.empty() && !fs::exists(existing, ec)) existing = existing.parent_path();
   if (existing.empty()) existing = ".";
-  if (!fs::is_directory(existing, ec))
+  if (!fs::is_directory(existing, ec)) {
+    if (existing == path) throw InputError(path.string(), option + " names a file; it must be a folder (new or existing)");
     throw InputError(path.string(), option + ": cannot be made: '" + existing.string() + "' is a file");
+  }
   if (::access(existing.c_str(), W_OK | X_OK) != 0)
     throw InputError(path.string(), option + ": cannot write into '" + existing.string() + "': " + std::strerror(errno));
 }
@@ -103,18 +104,13 @@ void check_can_make(const fs::path& path, const std::string& option) {
 }  // namespace
 
 void check_output_folder(const fs::path& folder, const std::string& option) {
-  std::error_code ec;
-  if (!fs::exists(folder, ec)) return check_can_make(folder, option);
-  if (!fs::is_directory(folder, ec))
-    throw InputError(folder.string(), option + " names a file; it must be a folder (new or existing)");
-  if (::access(folder.c_str(), W_OK | X_OK) != 0)
-    throw InputError(folder.string(), option + ": cannot write into it: " + std::strerror(errno));
+  check_writable_from(folder, folder, option);
 }
 
 void check_output_file(const fs::path& file, const std::string& option) {
   std::error_code ec;
   if (fs::is_directory(file, ec)) throw InputError(file.string(), option + " names a folder; it must be a file");
-  check_can_make(file, option);
+  check_writable_from(file, file.parent_path(), option);
 }
 
 // The shortest decimal form that reads back as the same double (what the file most likely said).

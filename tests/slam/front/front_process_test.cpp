@@ -141,6 +141,21 @@ TEST(FrontProcess, RelocalisesInTheSameSubmapAfterBlindFrames) {
   EXPECT_EQ(front.submaps().size(), 1u);
 }
 
+namespace {
+
+// Keypoints that the optical flow placed in the live keyframes (after the detected ones), observing a point.
+size_t followed_keypoints(const FrontProcess& front) {
+  size_t followed = 0;
+  for (const auto& [id, kf] : front.submap().keyframes()) {
+    if (kf->bad()) continue;
+    for (size_t i = kf->features().detected(); i < kf->features().size(); ++i)
+      if (kf->map_points()[i] && !kf->map_points()[i]->bad()) ++followed;
+  }
+  return followed;
+}
+
+}  // namespace
+
 // The same aisle with local mapping on its own thread (what `wardmap run` uses); under
 // `scripts/test.sh --tsan` this is the in-process check of the tracker / mapper locking. The optical
 // flow (an option, off by default) is on here, so that the thread sanitizer also sees its reads of
@@ -171,11 +186,7 @@ TEST(FrontProcess, TracksWithTheMapperOnItsOwnThread) {
   front.finish();
   EXPECT_LE(max_queue, static_cast<size_t>(options.mapping.queue_capacity));
   EXPECT_GE(front.mapper_stats().keyframes, 2);
-  size_t followed = 0;  // keypoints that the flow placed in the keyframes, observing a point
-  for (const auto& [id, kf] : front.submap().keyframes())
-    for (size_t i = kf->features().detected(); !kf->bad() && i < kf->features().size(); ++i)
-      if (kf->map_points()[i] && !kf->map_points()[i]->bad()) ++followed;
-  EXPECT_GT(followed, 0u) << "the flow followed no point into a keyframe";
+  EXPECT_GT(followed_keypoints(front), 0u) << "the flow followed no point into a keyframe";
   const Trajectory est = front.trajectory();
   const auto pairs = eval::associate(reader->ground_truth(), est, eval::AssociationOptions{});
   const eval::AteResult ate = eval::compute_ate(reader->ground_truth(), est, pairs, eval::Alignment::SE3);
@@ -228,11 +239,7 @@ TEST(FrontProcess, FlowFollowsThePointsTheDescriptorSearchesMiss) {
       observations += static_cast<size_t>(mp->num_observations());
     }
     r.observations_per_point = points ? static_cast<double>(observations) / static_cast<double>(points) : 0;
-    for (const auto& [id, kf] : front.submap().keyframes()) {
-      if (kf->bad()) continue;
-      for (size_t i = kf->features().detected(); i < kf->features().size(); ++i)
-        if (kf->map_points()[i] && !kf->map_points()[i]->bad()) ++r.followed;
-    }
+    r.followed = followed_keypoints(front);
     return r;
   };
   const Run rgbd_off = run(false, false), rgbd_on = run(true, false);
