@@ -164,9 +164,13 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
   SemanticRun run;
   run.frames = static_cast<int>(reader->size());
   slam::Trajectory trajectory;
+  std::vector<Eigen::Vector3d> map_points;  // for map.glb, in the frame of `trajectory`
+  // The world's up, from the cameras whose poses place the objects: the SLAM's keyframes, in the
+  // SLAM's world (its first camera's frame), or the ground truth's. map.glb is turned by the same.
+  const Eigen::Vector3d up = semantics::estimate_up(job.keyframes ? job.keyframes->poses : gt.poses);
+  mapper.set_up(up);
   if (job.keyframes) {
     // Keyframes from the SLAM, in its world.
-    mapper.set_up(semantics::estimate_up(job.keyframes->poses));
     std::vector<double> times;
     for (size_t i = 0; i < reader->size(); ++i) times.push_back(reader->timestamp(i));
     const auto frame_of = [&](size_t k) {
@@ -220,8 +224,9 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
     progress.finish();
     for (size_t i = 0; i < job.trajectory->size(); ++i)
       trajectory.push_back(job.trajectory->timestamps[i], to_metric(job.trajectory->poses[i]));
+    if (job.map_points)
+      for (const Eigen::Vector3d& p : *job.map_points) map_points.push_back(points ? Eigen::Vector3d(p * scale) : p);
   } else {
-    mapper.set_up(semantics::estimate_up(gt.poses));
     semantics::KeyframeSelector selector(options.keyframes);
     Progress progress("semantics", reader->size(), job.progress);
     for (size_t i = 0; i < reader->size(); ++i) {
@@ -301,7 +306,8 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
       map.objects.push_back({l.id, l.label, l.pose.pose.translation(), l.pose.pose.rotation(), l.pose.size,
                              static_cast<int>(l.measurements.size())});
     for (const auto& T : trajectory.poses) map.trajectory.push_back(T.translation());
-    map.up = semantics::estimate_up(gt.poses);
+    map.points = std::move(map_points);
+    map.up = up;
     semantics::write_map_glb(job.out / "map.glb", map);
     const auto& T = run.times;
     json report = {{"sequence", job.sequence.string()}, {"poses", own_run ? "gt" : "slam"}, {"detector", job.detector},

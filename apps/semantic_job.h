@@ -50,6 +50,9 @@ struct SemanticJob {
   // scale the detections give (semantics/monocular_scale.h), never on the sequence's depth images;
   // the objects, the trajectory in map.glb and the evaluation are in that metric frame.
   const std::vector<std::vector<Eigen::Vector3d>>* keyframe_points = nullptr;
+  // From the SLAM: its sparse map's points (world frame, map units), drawn in map.glb (in the metric
+  // frame of the objects and the trajectory). Null: the map has no points (--poses gt).
+  const std::vector<Eigen::Vector3d>* map_points = nullptr;
   // Prepared beforehand (prepare_semantic_job), e.g. to detect keyframes while the SLAM runs.
   // Null: prepared by run_semantic_job.
   SemanticSetup* setup = nullptr;

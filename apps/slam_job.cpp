@@ -304,6 +304,7 @@ double run_slam_job(const SlamJob& job) {
     slam::Trajectory kfs;
     std::vector<std::vector<Eigen::Vector3d>> keyframe_points;
     std::string ply_body;
+    std::vector<Eigen::Vector3d> world_points;  // the same points, for the object map's map.glb
     size_t points = 0;
     if (best) {
       std::vector<std::shared_ptr<slam::KeyFrame>> list;
@@ -323,6 +324,7 @@ double run_slam_job(const SlamJob& job) {
         if (p->bad()) continue;
         std::snprintf(line, sizeof line, "%.5f %.5f %.5f\n", p->position().x(), p->position().y(), p->position().z());
         ply_body += line;
+        if (job.objects) world_points.push_back(p->position());
         ++points;
       }
     }
@@ -336,6 +338,7 @@ double run_slam_job(const SlamJob& job) {
       sj.keyframes = &kfs;
       sj.trajectory = &traj;
       if (options.monocular) sj.keyframe_points = &keyframe_points;
+      sj.map_points = &world_points;
       const SemanticRun objects = run_semantic_job(sj);
       report["landmarks"] = objects.result.landmarks.size();
       std::printf("objects: %zu landmarks on %zu keyframes\n", objects.result.landmarks.size(), objects.keyframes.size());

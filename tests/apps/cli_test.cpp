@@ -2,6 +2,7 @@
 // file, the line where there is one, and the problem; no partial output file.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <iterator>
@@ -10,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "semantics/render/map_render.h"
 #include "tests/apps/cli_support.h"
 #include "tests/slam/io/fixtures.h"
 
@@ -231,6 +233,43 @@ TEST(CliBadInput, NoPartialOutputOnError) {
 namespace wardmap::test {
 namespace {
 
+// map.glb of a SLAM run with --objects: the SLAM's map points are drawn (as many as report.json
+// counts), and the map stands upright in one frame with its objects. The root node turns the map's
+// up onto glTF's +Y, so the camera's path at a fixed height stays level, and objects measured on
+// the map (monocular: on its points) have points near them. The up once came from the ground
+// truth's world instead of the SLAM's (its first camera's frame): the path of a synthetic
+// sequence then stood on end.
+void expect_upright_map_with_points(const fs::path& run) {
+  const semantics::MapScene scene = semantics::read_map_scene(run / "map.glb");
+  std::ifstream report_in(run / "report.json");
+  const auto report = nlohmann::json::parse(report_in);
+  ASSERT_EQ(scene.points.size(), 1u) << "no map points in map.glb";
+  const std::vector<Eigen::Vector3d>& points = scene.points[0].points;
+  EXPECT_EQ(points.size(), report.at("map_points").get<size_t>());
+  ASSERT_EQ(scene.lines.size(), 1u);
+  const std::vector<Eigen::Vector3d>& path = scene.lines[0].points;
+  ASSERT_GE(path.size(), 2u);
+  Eigen::Vector3d lo = path[0], hi = path[0];
+  for (const auto& p : path) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double level = std::max(hi.x() - lo.x(), hi.z() - lo.z()), rise = hi.y() - lo.y();
+  EXPECT_GT(level, 0.5) << "the camera moved, along glTF's horizontal plane";
+  // The up estimated from a short path's cameras may lean a few degrees (9 and 15 % here); turned
+  // on end, the path climbs as far as it goes (97-120 %).
+  EXPECT_LT(rise, 0.35 * level) << "the path climbs " << rise << " over " << level << ": the map is not upright";
+  ASSERT_FALSE(scene.objects.empty());
+  std::vector<double> nearest;
+  for (const auto& o : scene.objects) {
+    const Eigen::Vector3d centre = o.world.block<3, 1>(0, 3);
+    double best = 1e9;
+    for (const auto& p : points) best = std::min(best, (p - centre).norm());
+    nearest.push_back(best);
+  }
+  std::sort(nearest.begin(), nearest.end());
+  // 0.17-0.36 m (a box's centre lies inside it, the points on its faces); 1.5 m with monocular
+  // points left in map units while the objects were scaled to metres.
+  EXPECT_LT(nearest[nearest.size() / 2], 0.75) << "the objects and the map points are not in one frame";
+}
+
 // The whole chain on a short synthetic ward: render, RGB-D SLAM, objects on the SLAM's keyframes.
 TEST(CliPipeline, SlamThenObjectsOnASyntheticWard) {
   const fs::path dir = scratch_dir();
@@ -249,6 +288,7 @@ TEST(CliPipeline, SlamThenObjectsOnASyntheticWard) {
   std::ifstream in(dir / "run" / "objects.json");
   const std::string objects((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(objects.find("\"class\": \"bed\""), std::string::npos) << objects;
+  expect_upright_map_with_points(dir / "run");
 }
 
 }  // namespace
@@ -361,6 +401,8 @@ TEST(CliPipeline, MonocularObjectsAreMeasuredOnMapPointsAtAMetricScale) {
   EXPECT_NEAR(figures.at("position_error_mean").get<double>(), objects.at("position_error_mean").get<double>(), 1e-6)
       << eval.output;
   EXPECT_NEAR(figures.at("association_accuracy").get<double>(), objects.at("association_accuracy").get<double>(), 1e-9);
+  // map.glb in the objects' metric frame: the points scaled as the trajectory and the objects are.
+  expect_upright_map_with_points(dir / "run");
 }
 
 // RGB-D with the mapper on its own thread (the default), twice: both accurate.
