@@ -224,8 +224,8 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
     progress.finish();
     for (size_t i = 0; i < job.trajectory->size(); ++i)
       trajectory.push_back(job.trajectory->timestamps[i], to_metric(job.trajectory->poses[i]));
-    if (job.map_points)
-      for (const Eigen::Vector3d& p : *job.map_points) map_points.push_back(points ? Eigen::Vector3d(p * scale) : p);
+    if (job.map_points)  // in metres as the trajectory is (scale stays 1 unless monocular)
+      for (const Eigen::Vector3d& p : *job.map_points) map_points.push_back(scale * p);
   } else {
     semantics::KeyframeSelector selector(options.keyframes);
     Progress progress("semantics", reader->size(), job.progress);
