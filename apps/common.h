@@ -2,8 +2,10 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <string>
 
+#include "slam/eval/trajectory_eval.h"
 #include "slam/io/sequence.h"
 
 namespace wardmap::apps {
@@ -19,5 +21,8 @@ struct ReaderArgs {
 // Adds those options to a command.
 void add_reader_options(CLI::App* cmd, ReaderArgs& args);
 slam::io::ReaderOptions reader_options(const ReaderArgs& args);
+
+// The scale drift as report.json and `wardmap eval --json` write it: null figures when not valid.
+nlohmann::json scale_drift_json(const slam::eval::ScaleDriftResult& drift);
 
 }  // namespace wardmap::apps

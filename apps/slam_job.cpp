@@ -12,6 +12,7 @@
 #include <utility>
 #include <nlohmann/json.hpp>
 
+#include "apps/common.h"
 #include "apps/detection_cache.h"
 #include "apps/frame_prefetcher.h"
 #include "apps/interrupt.h"
@@ -281,6 +282,14 @@ double run_slam_job(const SlamJob& job) {
                     ate.stats.rmse, ate.stats.median, ate.stats.max, pairs.size());
       md += buf;
       std::printf("ATE (%s) RMSE %.4f m over %zu poses\n", name, ate.stats.rmse, pairs.size());
+      // How the scale changes along the run: the monocular drift's diagnostic (RGB-D too).
+      const auto drift = slam::eval::compute_scale_drift(gt, traj, pairs);
+      report["scale_drift"] = scale_drift_json(drift);
+      if (drift.valid) {
+        std::snprintf(buf, sizeof buf, "- scale drift %+.3f %% a second over %zu windows of 1 s (%+.2f %% over the run)\n",
+                      drift.slope_percent_per_second, drift.ratios.size(), drift.change_percent);
+        md += buf;
+      }
     }
     report["tracking_rate"] = rate;
     std::snprintf(buf, sizeof buf, "- tracking rate %.1f %%\n", rate);

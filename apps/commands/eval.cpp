@@ -1,4 +1,4 @@
-// wardmap eval --gt <file|dataset> --est <file>: ATE, RPE and tracking rate (EVALUATION.md).
+// wardmap eval --gt <file|dataset> --est <file>: ATE, RPE and tracking rate (EVALUATION.md), scale drift.
 #include <spdlog/spdlog.h>
 
 #include <nlohmann/json.hpp>
@@ -71,6 +71,7 @@ void run_eval(const EvalArgs& a) {
   const auto ate = slam::eval::compute_ate(gt, est, pairs, alignment);
   const auto rpe = slam::eval::compute_rpe(gt, est, pairs, a.rpe_delta, ate.scale);
   const double rate = slam::eval::tracking_rate(gt, est, assoc);
+  const auto drift = slam::eval::compute_scale_drift(gt, est, pairs);
 
   std::printf("ground truth:   %s (%zu poses)\n", a.gt.c_str(), gt.size());
   std::printf("estimate:       %s (%zu poses)\n", a.est.c_str(), est.size());
@@ -79,6 +80,11 @@ void run_eval(const EvalArgs& a) {
   std::printf("ATE RMSE:       %.9f m\n", ate.stats.rmse);
   std::printf("ATE mean/median/max: %.6f / %.6f / %.6f m\n", ate.stats.mean, ate.stats.median, ate.stats.max);
   std::printf("RPE (%d frame):  %.6f m, %.6f deg (RMSE)\n", rpe.delta, rpe.translation.rmse, rpe.rotation_deg.rmse);
+  if (drift.valid)
+    std::printf("scale drift:    %+.3f %% a second over %zu windows of %.0f s (%+.2f %% over the run)\n",
+                drift.slope_percent_per_second, drift.ratios.size(), drift.window_seconds, drift.change_percent);
+  else
+    std::printf("scale drift:    n/a (needs timestamps and 3 windows of %.0f s that move)\n", drift.window_seconds);
   std::printf("tracking rate:  %.2f %%\n", rate);
 
   if (!a.json.empty()) {
@@ -89,6 +95,7 @@ void run_eval(const EvalArgs& a) {
                         {"rpe", {{"delta_frames", rpe.delta}, {"count", rpe.count},
                                  {"translation", stats_json(rpe.translation)}, {"rotation_deg", stats_json(rpe.rotation_deg)}}},
                         {"tracking_rate", rate},
+                        {"scale_drift", scale_drift_json(drift)},
                         {"transform", {{"scale", T.scale()},
                                        {"rotation_xyzw", {T.rotation().x(), T.rotation().y(), T.rotation().z(), T.rotation().w()}},
                                        {"translation", {T.translation().x(), T.translation().y(), T.translation().z()}}}}};
@@ -113,7 +120,9 @@ void add_eval_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "eval",
       "Evaluate an estimated trajectory against ground truth: ATE (RMSE, mean, median, max) after Umeyama alignment,\n"
-      "RPE and tracking rate, as defined in docs/EVALUATION.md. Pose files: TUM (8 values a line) or KITTI (12).");
+      "RPE and tracking rate, as defined in docs/EVALUATION.md. Pose files: TUM (8 values a line) or KITTI (12).\n"
+      "Also the scale drift: the estimate's displacement over each second against the truth's, divided by their\n"
+      "mean; the slope of their least-squares line in % a second (negative: the estimate shrinks along the run).");
   cmd->add_option("--gt", args->gt, "Ground truth: a TUM or KITTI pose file, or a dataset folder")->required();
   cmd->add_option("--est", args->est, "Estimated trajectory: a TUM or KITTI pose file")->required();
   cmd->add_option("--align", args->align, "Alignment: sim3 (monocular), se3 (RGB-D, stereo) or none")->capture_default_str()

@@ -133,6 +133,48 @@ RpeResult compute_rpe(const Trajectory& gt, const Trajectory& est, const std::ve
   return r;
 }
 
+ScaleDriftResult compute_scale_drift(const Trajectory& gt, const Trajectory& est,
+                                     const std::vector<std::pair<size_t, size_t>>& pairs, double window_seconds,
+                                     double min_chord) {
+  if (!(window_seconds > 0)) throw std::invalid_argument("scale drift window must be positive");
+  ScaleDriftResult r;
+  r.window_seconds = window_seconds;
+  if (gt.indexed || pairs.size() < 2) return r;
+  const double t0 = gt.timestamps[pairs.front().first];
+  std::vector<double> raw;
+  for (size_t i = 0, j = 1; j < pairs.size(); ++j) {
+    const double ti = gt.timestamps[pairs[i].first], tj = gt.timestamps[pairs[j].first];
+    if (tj - ti < window_seconds - 1e-9) continue;
+    const double g = (gt.poses[pairs[j].first].translation() - gt.poses[pairs[i].first].translation()).norm();
+    const double e = (est.poses[pairs[j].second].translation() - est.poses[pairs[i].second].translation()).norm();
+    if (g >= min_chord) {
+      r.times.push_back(0.5 * (ti + tj) - t0);
+      raw.push_back(e / g);
+    }
+    i = j;
+  }
+  if (raw.size() < 3) return r;
+  double mean = 0;
+  for (double x : raw) mean += x;
+  mean /= static_cast<double>(raw.size());
+  if (!(mean > 0)) return r;
+  for (double x : raw) r.ratios.push_back(x / mean);
+  double tm = 0, ym = 0;
+  for (size_t k = 0; k < raw.size(); ++k) tm += r.times[k], ym += r.ratios[k];
+  tm /= static_cast<double>(raw.size());
+  ym /= static_cast<double>(raw.size());
+  double sxy = 0, sxx = 0;
+  for (size_t k = 0; k < raw.size(); ++k) {
+    sxy += (r.times[k] - tm) * (r.ratios[k] - ym);
+    sxx += (r.times[k] - tm) * (r.times[k] - tm);
+  }
+  if (!(sxx > 0)) return r;
+  r.slope_percent_per_second = 100.0 * sxy / sxx;
+  r.change_percent = r.slope_percent_per_second * (r.times.back() - r.times.front());
+  r.valid = true;
+  return r;
+}
+
 double tracking_rate(const Trajectory& gt, const Trajectory& est, const AssociationOptions& options) {
   if (gt.empty() || est.empty()) return 0.0;
   const auto median_gap = [](const std::vector<double>& t) {

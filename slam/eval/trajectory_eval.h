@@ -52,6 +52,25 @@ struct RpeResult {
 RpeResult compute_rpe(const Trajectory& gt, const Trajectory& est, const std::vector<std::pair<size_t, size_t>>& pairs,
                       int delta, double scale);
 
+// Scale drift: how the estimate's scale changes along the run, a diagnostic of monocular maps
+// beyond EVALUATION.md's figures. The paired poses are cut into consecutive windows of at least
+// window_seconds of ground-truth time; each window's ratio is the estimate's displacement over it
+// (chord, first to last pose) against the ground truth's, skipped when the ground truth moved less
+// than min_chord metres. The ratios are divided by their mean, and the slope is the least-squares
+// line through them over the windows' mid times: negative when the estimate shrinks along the run.
+// Needs timestamps (none for an indexed ground truth) and at least 3 windows; else valid is false.
+struct ScaleDriftResult {
+  bool valid = false;
+  double window_seconds = 1.0;
+  std::vector<double> times;   // windows' mid times, seconds after the first pair
+  std::vector<double> ratios;  // windows' displacement ratios, divided by their mean
+  double slope_percent_per_second = 0;
+  double change_percent = 0;   // the slope over the span of the windows' mid times
+};
+ScaleDriftResult compute_scale_drift(const Trajectory& gt, const Trajectory& est,
+                                     const std::vector<std::pair<size_t, size_t>>& pairs, double window_seconds = 1.0,
+                                     double min_chord = 0.05);
+
 // Tracking rate (%): the share of the sequence's duration covered by frames with an estimated pose.
 // Each ground-truth sample stands for the time up to the next one; it counts as tracked when an
 // estimate lies within max(max_dt, half the estimate's median frame period) of it (so a 100 Hz

@@ -326,6 +326,11 @@ TEST(CliPipeline, MonocularRunIsAccurateAndDeterministic) {
   const double ate = report_number(dir / "a" / "report.json", "ate_sim3");
   EXPECT_GT(ate, 0);
   EXPECT_LT(ate, 0.02) << "ATE (Sim(3)) " << ate << " m";
+  // The scale drift over the four whole 1-s windows of the 5-s run: under 1 % a second.
+  const auto drift = nlohmann::json::parse(read_all(dir / "a" / "report.json")).at("scale_drift");
+  EXPECT_EQ(drift.at("windows").get<int>(), 4) << drift.dump();
+  EXPECT_LT(std::abs(drift.at("slope_percent_per_s").get<double>()), 1.0) << drift.dump();
+  EXPECT_NE(read_all(dir / "a" / "report.md").find("- scale drift "), std::string::npos);
   for (const char* f : {"trajectory.txt", "frames.csv", "keyframes.txt", "points.ply"})
     EXPECT_EQ(read_all(dir / "a" / f), read_all(dir / "b" / f)) << f << " differs between two --deterministic runs";
   EXPECT_NE(read_all(dir / "a" / "frames.csv").find(",backfilled,"), std::string::npos);

@@ -117,6 +117,9 @@ TEST(EvalCli, TumSim3MatchesIndependentComputation) {
   EXPECT_NEAR(ref.scale, 1 / 0.42, 0.01);  // sanity: the noise is small
   EXPECT_GT(ref.rmse, 0.005);
   EXPECT_NEAR(j["tracking_rate"].get<double>(), 100.0, 1e-9);
+  // A similarity of the truth with 1 cm noise: six 1-s windows, no scale drift beyond the noise.
+  EXPECT_EQ(j["scale_drift"]["windows"].get<int>(), 6) << j["scale_drift"].dump();
+  EXPECT_LT(std::abs(j["scale_drift"]["slope_percent_per_s"].get<double>()), 1.5) << j["scale_drift"].dump();
 }
 
 TEST(EvalCli, KittiFormatSim3AndSe3) {
@@ -135,6 +138,7 @@ TEST(EvalCli, KittiFormatSim3AndSe3) {
     EXPECT_EQ(j["pairs"].get<int>(), 200);
     EXPECT_NEAR(j["ate"]["rmse"].get<double>(), ref.rmse, 1e-6) << (with_scale ? "sim3" : "se3");
     EXPECT_NEAR(j["scale"].get<double>(), ref.scale, 1e-6);
+    EXPECT_TRUE(j["scale_drift"]["slope_percent_per_s"].is_null()) << "KITTI pose files have no time";
   }
 }
 

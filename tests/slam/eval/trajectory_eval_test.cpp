@@ -68,6 +68,63 @@ TEST(Rpe, ZeroForRigidCopyAndScaleAware) {
   EXPECT_LT(r.rotation_deg.rmse, 1e-6);
 }
 
+// A walk along x at 1 m/s, 30 Hz, 20 s, standing still for the first `rest` seconds; the estimate's
+// speed is `scale(t)` times the truth's, in a rotated frame.
+template <typename Scale>
+std::pair<Trajectory, Trajectory> walk(Scale scale, double rest = 0) {
+  Trajectory gt, est;
+  const Eigen::Quaterniond R(Eigen::AngleAxisd(0.7, Eigen::Vector3d(0, 1, 1).normalized()));
+  double xg = 0, xe = 0;
+  for (int i = 0; i <= 600; ++i) {
+    const double t = i / 30.0;
+    if (i > 0 && t > rest) {
+      xg += 1.0 / 30;
+      xe += scale(t - 0.5 / 30) / 30;
+    }
+    gt.push_back(100 + t, SE3(Eigen::Quaterniond::Identity(), Eigen::Vector3d(xg, 0, 0)));
+    est.push_back(100 + t, SE3(R, R * Eigen::Vector3d(xe, 0, 0)));
+  }
+  return {gt, est};
+}
+
+TEST(ScaleDrift, NoneForAConstantScale) {
+  const auto [gt, est] = walk([](double) { return 0.4; });
+  const ScaleDriftResult r = compute_scale_drift(gt, est, associate(gt, est, {}));
+  ASSERT_TRUE(r.valid);
+  EXPECT_EQ(r.ratios.size(), 20u);
+  EXPECT_NEAR(r.slope_percent_per_second, 0.0, 1e-9);
+  for (double x : r.ratios) EXPECT_NEAR(x, 1.0, 1e-9);
+}
+
+TEST(ScaleDrift, SlopeOfALinearShrink) {
+  // Speed 1 - 0.003 t: each window's ratio is the speed at its middle, 0.97 on average.
+  const auto [gt, est] = walk([](double t) { return 1.0 - 0.003 * t; });
+  const ScaleDriftResult r = compute_scale_drift(gt, est, associate(gt, est, {}));
+  ASSERT_TRUE(r.valid);
+  EXPECT_NEAR(r.slope_percent_per_second, -100 * 0.003 / 0.97, 1e-3);
+  EXPECT_NEAR(r.change_percent, r.slope_percent_per_second * 19, 1e-9);
+  EXPECT_NEAR(r.times.front(), 0.5, 1e-9);
+  // Two-second windows see the same line.
+  EXPECT_NEAR(compute_scale_drift(gt, est, associate(gt, est, {}), 2.0).slope_percent_per_second,
+              r.slope_percent_per_second, 1e-3);
+}
+
+TEST(ScaleDrift, StillWindowsAreSkippedAndTooFewAreNotValid) {
+  const auto [gt, est] = walk([](double t) { return 1.0 + 0.002 * t; }, 5.0);
+  const ScaleDriftResult r = compute_scale_drift(gt, est, associate(gt, est, {}));
+  ASSERT_TRUE(r.valid);
+  EXPECT_EQ(r.ratios.size(), 15u);  // the first five seconds do not move
+  EXPECT_GT(r.slope_percent_per_second, 0.19);
+  Trajectory short_gt, short_est;
+  for (size_t i = 0; i < 60; ++i) short_gt.push_back(gt.timestamps[i + 300], gt.poses[i + 300]),
+                                  short_est.push_back(est.timestamps[i + 300], est.poses[i + 300]);
+  EXPECT_FALSE(compute_scale_drift(short_gt, short_est, associate(short_gt, short_est, {})).valid);  // 1 window
+  Trajectory indexed = gt;
+  indexed.indexed = true;
+  EXPECT_FALSE(compute_scale_drift(indexed, est, associate(gt, est, {})).valid);
+  EXPECT_THROW(compute_scale_drift(gt, est, associate(gt, est, {}), 0.0), std::invalid_argument);
+}
+
 TEST(TrackingRate, DurationCoveredByEstimates) {
   const Trajectory gt = circle(100, 100.0);  // 1 s at 100 Hz
   Trajectory est;
