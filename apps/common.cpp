@@ -30,6 +30,7 @@ slam::io::ReaderOptions reader_options(const ReaderArgs& args) {
 nlohmann::json scale_drift_json(const slam::eval::ScaleDriftResult& drift) {
   nlohmann::json j = {{"window_s", drift.window_seconds}, {"windows", drift.ratios.size()}};
   j["slope_percent_per_s"] = drift.valid ? nlohmann::json(drift.slope_percent_per_second) : nlohmann::json();
+  j["slope_se_percent_per_s"] = drift.valid ? nlohmann::json(drift.slope_se_percent_per_second) : nlohmann::json();
   j["change_percent"] = drift.valid ? nlohmann::json(drift.change_percent) : nlohmann::json();
   return j;
 }

@@ -286,8 +286,10 @@ double run_slam_job(const SlamJob& job) {
       const auto drift = slam::eval::compute_scale_drift(gt, traj, pairs);
       report["scale_drift"] = scale_drift_json(drift);
       if (drift.valid) {
-        std::snprintf(buf, sizeof buf, "- scale drift %+.3f %% a second over %zu windows of 1 s (%+.2f %% over the run)\n",
-                      drift.slope_percent_per_second, drift.ratios.size(), drift.change_percent);
+        std::snprintf(buf, sizeof buf,
+                      "- scale drift %+.3f +- %.3f %% a second over %zu windows of 1 s (%+.2f %% over the run)\n",
+                      drift.slope_percent_per_second, drift.slope_se_percent_per_second, drift.ratios.size(),
+                      drift.change_percent);
         md += buf;
       }
     }

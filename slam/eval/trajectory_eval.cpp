@@ -169,7 +169,14 @@ ScaleDriftResult compute_scale_drift(const Trajectory& gt, const Trajectory& est
     sxx += (r.times[k] - tm) * (r.times[k] - tm);
   }
   if (!(sxx > 0)) return r;
-  r.slope_percent_per_second = 100.0 * sxy / sxx;
+  const double slope = sxy / sxx;
+  double ss = 0;
+  for (size_t k = 0; k < raw.size(); ++k) {
+    const double e = r.ratios[k] - (ym + slope * (r.times[k] - tm));
+    ss += e * e;
+  }
+  r.slope_percent_per_second = 100.0 * slope;
+  r.slope_se_percent_per_second = 100.0 * std::sqrt(ss / static_cast<double>(raw.size() - 2) / sxx);
   r.change_percent = r.slope_percent_per_second * (r.times.back() - r.times.front());
   r.valid = true;
   return r;

@@ -58,6 +58,8 @@ RpeResult compute_rpe(const Trajectory& gt, const Trajectory& est, const std::ve
 // (chord, first to last pose) against the ground truth's, skipped when the ground truth moved less
 // than min_chord metres. The ratios are divided by their mean, and the slope is the least-squares
 // line through them over the windows' mid times: negative when the estimate shrinks along the run.
+// On slow motion (a hand-held camera moving a few cm a second) the ratios are noisy: read the slope
+// with its standard error.
 // Needs timestamps (none for an indexed ground truth) and at least 3 windows; else valid is false.
 struct ScaleDriftResult {
   bool valid = false;
@@ -65,6 +67,7 @@ struct ScaleDriftResult {
   std::vector<double> times;   // windows' mid times, seconds after the first pair
   std::vector<double> ratios;  // windows' displacement ratios, divided by their mean
   double slope_percent_per_second = 0;
+  double slope_se_percent_per_second = 0;  // its standard error, from the ratios' scatter about the line
   double change_percent = 0;   // the slope over the span of the windows' mid times
 };
 ScaleDriftResult compute_scale_drift(const Trajectory& gt, const Trajectory& est,

@@ -93,6 +93,7 @@ TEST(ScaleDrift, NoneForAConstantScale) {
   ASSERT_TRUE(r.valid);
   EXPECT_EQ(r.ratios.size(), 20u);
   EXPECT_NEAR(r.slope_percent_per_second, 0.0, 1e-9);
+  EXPECT_NEAR(r.slope_se_percent_per_second, 0.0, 1e-9);
   for (double x : r.ratios) EXPECT_NEAR(x, 1.0, 1e-9);
 }
 
@@ -104,9 +105,28 @@ TEST(ScaleDrift, SlopeOfALinearShrink) {
   EXPECT_NEAR(r.slope_percent_per_second, -100 * 0.003 / 0.97, 1e-3);
   EXPECT_NEAR(r.change_percent, r.slope_percent_per_second * 19, 1e-9);
   EXPECT_NEAR(r.times.front(), 0.5, 1e-9);
+  EXPECT_LT(r.slope_se_percent_per_second, 1e-6);  // the ratios lie on the line
   // Two-second windows see the same line.
   EXPECT_NEAR(compute_scale_drift(gt, est, associate(gt, est, {}), 2.0).slope_percent_per_second,
               r.slope_percent_per_second, 1e-3);
+}
+
+TEST(ScaleDrift, StandardErrorOfScatteredRatios) {
+  // Speeds alternating 0.98 / 1.02 from one second to the next: no trend, a scatter of 2 %.
+  const auto [gt, est] = walk([](double t) { return static_cast<int>(t) % 2 ? 1.02 : 0.98; });
+  const ScaleDriftResult r = compute_scale_drift(gt, est, associate(gt, est, {}));
+  ASSERT_TRUE(r.valid);
+  ASSERT_EQ(r.ratios.size(), 20u);
+  // Least squares by hand: slope sum((t - tm) y) / sum((t - tm)^2), residuals about that line.
+  double tm = 0, ym = 0, sxy = 0, sxx = 0, ss = 0;
+  for (size_t k = 0; k < 20; ++k) tm += r.times[k] / 20, ym += r.ratios[k] / 20;
+  for (size_t k = 0; k < 20; ++k) sxy += (r.times[k] - tm) * (r.ratios[k] - ym), sxx += std::pow(r.times[k] - tm, 2);
+  for (size_t k = 0; k < 20; ++k) ss += std::pow(r.ratios[k] - ym - sxy / sxx * (r.times[k] - tm), 2);
+  EXPECT_NEAR(r.slope_percent_per_second, 100 * sxy / sxx, 1e-9);
+  EXPECT_NEAR(r.slope_se_percent_per_second, 100 * std::sqrt(ss / 18 / sxx), 1e-9);
+  // About the scatter over the windows' spread in time: 0.02 / sqrt(20 (20^2 - 1) / 12) a second.
+  EXPECT_NEAR(r.slope_se_percent_per_second, 100 * 0.02 / std::sqrt(665.0), 0.01);
+  EXPECT_LT(std::abs(r.slope_percent_per_second), 2 * r.slope_se_percent_per_second);
 }
 
 TEST(ScaleDrift, StillWindowsAreSkippedAndTooFewAreNotValid) {
