@@ -1,5 +1,7 @@
 #include "apps/common.h"
 
+#include <cstdio>
+
 namespace wardmap::apps {
 
 void add_reader_options(CLI::App* cmd, ReaderArgs& args) {
@@ -33,6 +35,17 @@ nlohmann::json scale_drift_json(const slam::eval::ScaleDriftResult& drift) {
   j["slope_se_percent_per_s"] = drift.valid ? nlohmann::json(drift.slope_se_percent_per_second) : nlohmann::json();
   j["change_percent"] = drift.valid ? nlohmann::json(drift.change_percent) : nlohmann::json();
   return j;
+}
+
+std::string scale_drift_text(const slam::eval::ScaleDriftResult& drift) {
+  char buf[160];
+  if (drift.valid)
+    std::snprintf(buf, sizeof buf, "%+.3f +- %.3f %% a second over %zu windows of %.0f s (%+.2f %% over the run)",
+                  drift.slope_percent_per_second, drift.slope_se_percent_per_second, drift.ratios.size(),
+                  drift.window_seconds, drift.change_percent);
+  else
+    std::snprintf(buf, sizeof buf, "n/a (needs timestamps and 3 windows of %.0f s that move)", drift.window_seconds);
+  return buf;
 }
 
 }  // namespace wardmap::apps

@@ -24,5 +24,8 @@ slam::io::ReaderOptions reader_options(const ReaderArgs& args);
 
 // The scale drift as report.json and `wardmap eval --json` write it: null figures when not valid.
 nlohmann::json scale_drift_json(const slam::eval::ScaleDriftResult& drift);
+// The same as `wardmap eval` prints it and report.md writes it: "+s +- e % a second over n windows
+// of w s (+c % over the run)", or why there is none.
+std::string scale_drift_text(const slam::eval::ScaleDriftResult& drift);
 
 }  // namespace wardmap::apps

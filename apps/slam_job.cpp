@@ -285,13 +285,7 @@ double run_slam_job(const SlamJob& job) {
       // How the scale changes along the run: the monocular drift's diagnostic (RGB-D too).
       const auto drift = slam::eval::compute_scale_drift(gt, traj, pairs);
       report["scale_drift"] = scale_drift_json(drift);
-      if (drift.valid) {
-        std::snprintf(buf, sizeof buf,
-                      "- scale drift %+.3f +- %.3f %% a second over %zu windows of 1 s (%+.2f %% over the run)\n",
-                      drift.slope_percent_per_second, drift.slope_se_percent_per_second, drift.ratios.size(),
-                      drift.change_percent);
-        md += buf;
-      }
+      if (drift.valid) md += "- scale drift " + scale_drift_text(drift) + "\n";
     }
     report["tracking_rate"] = rate;
     std::snprintf(buf, sizeof buf, "- tracking rate %.1f %%\n", rate);

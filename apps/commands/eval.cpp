@@ -80,12 +80,7 @@ void run_eval(const EvalArgs& a) {
   std::printf("ATE RMSE:       %.9f m\n", ate.stats.rmse);
   std::printf("ATE mean/median/max: %.6f / %.6f / %.6f m\n", ate.stats.mean, ate.stats.median, ate.stats.max);
   std::printf("RPE (%d frame):  %.6f m, %.6f deg (RMSE)\n", rpe.delta, rpe.translation.rmse, rpe.rotation_deg.rmse);
-  if (drift.valid)
-    std::printf("scale drift:    %+.3f +- %.3f %% a second over %zu windows of %.0f s (%+.2f %% over the run)\n",
-                drift.slope_percent_per_second, drift.slope_se_percent_per_second, drift.ratios.size(),
-                drift.window_seconds, drift.change_percent);
-  else
-    std::printf("scale drift:    n/a (needs timestamps and 3 windows of %.0f s that move)\n", drift.window_seconds);
+  std::printf("scale drift:    %s\n", scale_drift_text(drift).c_str());
   std::printf("tracking rate:  %.2f %%\n", rate);
 
   if (!a.json.empty()) {
