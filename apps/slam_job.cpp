@@ -135,9 +135,10 @@ double run_slam_job(const SlamJob& job) {
                  "no relocalisation, a lost track starts a new submap");
   else
     front.set_vocabulary(std::make_shared<const slam::place::Vocabulary>(slam::place::Vocabulary::load(vocabulary_file)));
-  std::string frames_csv = "timestamp,status,submap\n", timing_csv = "timestamp,seconds,extract_seconds,mapping_seconds,wait_seconds\n";
+  std::string frames_csv = "timestamp,status,submap\n", timing_csv = "timestamp,seconds,extract_seconds,mapping_seconds,wait_seconds,flow\n";
   std::vector<double> seconds, stamps;
   double wait_seconds = 0;  // the tracker waiting for a threaded mapper behind its time
+  size_t flow_frames = 0;  // frames that ran the optical flow (tracking.flow_extend / _mono, flow_budget_ms)
   std::vector<std::string> statuses;
   std::vector<int> submap_of;
   char line[160];
@@ -188,11 +189,12 @@ double run_slam_job(const SlamJob& job) {
           submap_of[k] = r.submap;
           break;
         }
-    std::snprintf(line, sizeof line, "%.6f,%.6f,%.6f,%.6f,%.6f\n", r.timestamp, r.seconds, r.extract_seconds,
-                  r.mapping_seconds, r.wait_seconds);
+    std::snprintf(line, sizeof line, "%.6f,%.6f,%.6f,%.6f,%.6f,%d\n", r.timestamp, r.seconds, r.extract_seconds,
+                  r.mapping_seconds, r.wait_seconds, r.flow ? 1 : 0);
     timing_csv += line;
     seconds.push_back(r.seconds);
     wait_seconds += r.wait_seconds;
+    flow_frames += r.flow ? 1 : 0;
   }
   const size_t processed = stamps.size();
   progress.finish();
@@ -218,7 +220,10 @@ double run_slam_job(const SlamJob& job) {
                  {"mapper_aborted_bas", front.mapper_stats().ba_aborted},
                  // the tracker waiting for a threaded mapper still busy (the sequence time since the last
                  // keyframe, or mapping.max_lag_frames after it)
-                 {"mapper_wait_seconds", wait_seconds}};
+                 {"mapper_wait_seconds", wait_seconds},
+                 // frames that ran the optical flow: all with it on and no budget, fewer when it was over
+                 // tracking.flow_budget_ms(_mono), none with it off
+                 {"flow_frames", flow_frames}};
   report["first_frame"] = reader->first_frame();  // of the stretch run (--first-frame)
   if (interrupted) report["interrupted"] = signal_name(interrupted);
   {
@@ -250,6 +255,8 @@ double run_slam_job(const SlamJob& job) {
         std::to_string(front.mapper_stats().deferred) + "\n- local BAs cut short (a keyframe waiting or wanted): " +
         std::to_string(front.mapper_stats().ba_aborted) + "\n";
   std::snprintf(buf, sizeof buf, "- tracker waiting for the mapper (threaded, behind its time): %.1f s\n", wait_seconds);
+  md += buf;
+  std::snprintf(buf, sizeof buf, "- optical flow: on %zu of %zu frames\n", flow_frames, processed);
   md += buf;
   {
     const json& t = report["mapping_ms_per_keyframe"];

@@ -65,6 +65,10 @@ void FrontOptions::validate(const std::filesystem::path& file) const {
   check_range(t.flow_snap, 0.0, 20.0, "tracking.flow_snap", file);
   check_range(t.flow_max_age, 1, 100000, "tracking.flow_max_age", file);
   check_range(t.flow_max_points, 1, 1000000, "tracking.flow_max_points", file);
+  check_range(t.flow_budget_ms, 0.0, 10000.0, "tracking.flow_budget_ms", file);
+  check_range(t.flow_budget_ms_mono, 0.0, 10000.0, "tracking.flow_budget_ms_mono", file);
+  check_range(t.flow_budget_frames, 1, 100000, "tracking.flow_budget_frames", file);
+  check_range(t.flow_budget_retry, 1, 100000, "tracking.flow_budget_retry", file);
   check_range(t.reloc_max_speed, 0.0, 1000.0, "tracking.reloc_max_speed", file);
   check_range(t.reloc_distance_margin, 0.0, 1e6, "tracking.reloc_distance_margin", file);
   const TwoViewOptions& v = t.two_view;
@@ -165,6 +169,10 @@ FrontOptions load_front_options(const io::Settings& settings) {
   tk.read("reloc_min_inliers", k.reloc_min_inliers);
   tk.read("flow_extend", k.flow_extend);
   tk.read("flow_extend_mono", k.flow_extend_mono);
+  tk.read("flow_budget_ms", k.flow_budget_ms);
+  tk.read("flow_budget_ms_mono", k.flow_budget_ms_mono);
+  tk.read("flow_budget_frames", k.flow_budget_frames);
+  tk.read("flow_budget_retry", k.flow_budget_retry);
   tk.read("flow_max_fb_error", k.flow_max_fb_error);
   tk.read("flow_gate", k.flow_gate);
   tk.read("flow_window", k.flow_window);

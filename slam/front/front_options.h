@@ -80,13 +80,24 @@ struct TrackingOptions {
   // The last frame's map points that the descriptor searches missed are followed into the frame by
   // pyramidal Lucas-Kanade flow (forward-backward checked, gated by the point's projection) and
   // observed there, so that points whose corner FAST does not find again or whose descriptor changed
-  // live longer (docs/EXPERIMENTS.md, "Following map points by optical flow"). Off by default in both
-  // modes: it costs 1.2-2.2x the tracking time (RGB-D: 18-21 ms a frame against 12-13 ms on the slow
-  // hours of 2026-12-01/02, over the 15 ms target), and in RGB-D it lowers the drift of --deterministic
-  // synthetic runs only, not of ordinary (threaded) ones nor on 7-Scenes ("The flow off in RGB-D again").
+  // live longer (docs/EXPERIMENTS.md, "Following map points by optical flow"). It costs 1.2-2.2x the
+  // tracking time. Monocular: on, under the time budget below (it lowers the synthetic drift, and a
+  // host too slow for it within the budget runs without it). RGB-D: off (18-21 ms a frame against
+  // 12-13 ms on the slow hours of 2026-12-01/02, and it lowers the drift of --deterministic synthetic
+  // runs only, not of ordinary (threaded) ones nor on 7-Scenes: "The flow off in RGB-D again").
   bool flow_extend = false;             // tracking.flow_extend: RGB-D
-  bool flow_extend_mono = false;        // tracking.flow_extend_mono
+  bool flow_extend_mono = true;         // tracking.flow_extend_mono
   bool flow(bool monocular) const { return monocular ? flow_extend_mono : flow_extend; }
+  // The flow under a time budget (threaded runs; slam/front/flow_budget.h): it runs for windows of
+  // flow_budget_frames tracked frames, and stops while it would bring a window's median frame time
+  // (extraction and tracking) over the budget. 0: no budget (always on). Given for a 640 x 480 frame
+  // and scaled by the image's pixel count; the defaults are the realtime targets.
+  // --deterministic runs keep the flow on: their output must not depend on timing.
+  double flow_budget_ms = 15.0;         // tracking.flow_budget_ms: RGB-D
+  double flow_budget_ms_mono = 10.0;    // tracking.flow_budget_ms_mono
+  double flow_budget_ms_for(bool monocular) const { return monocular ? flow_budget_ms_mono : flow_budget_ms; }
+  int flow_budget_frames = 30;          // tracking.flow_budget_frames: frames one decision holds
+  int flow_budget_retry = 10;           // tracking.flow_budget_retry: off-windows before its cost is measured again
   double flow_max_fb_error = 0.5;       // tracking.flow_max_fb_error (px): forward-backward check
   double flow_gate = 3.0;               // tracking.flow_gate (px): flow position against the projection
   int flow_window = 15;                 // tracking.flow_window (px)

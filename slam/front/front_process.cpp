@@ -8,6 +8,11 @@
 
 namespace wardmap::slam {
 
+double flow_budget_seconds(const TrackingOptions& t, bool monocular, const PinholeCamera& camera) {
+  const double pixels = static_cast<double>(camera.width) * camera.height;
+  return t.flow_budget_ms_for(monocular) / 1e3 * (pixels > 0 ? pixels / (640.0 * 480.0) : 1.0);
+}
+
 FrontProcess::FrontProcess(const FrontOptions& options, const PinholeCamera& camera)
     : options_(options),
       camera_(camera),
@@ -20,7 +25,10 @@ FrontProcess::FrontProcess(const FrontOptions& options, const PinholeCamera& cam
       ids_(std::make_shared<IdSource>()),
       submap_(std::make_shared<Submap>(0, ids_)),
       mapper_(options, camera),
-      tracker_(options, camera, mapper_) {
+      tracker_(options, camera, mapper_),
+      // Timing decides the flow in threaded runs only: --deterministic output must not depend on it.
+      flow_budget_(options.mapping_thread ? flow_budget_seconds(options.tracking, options.monocular, camera) : 0.0,
+                   options.tracking.flow_budget_frames, options.tracking.flow_budget_retry) {
   options_.validate();
   submaps_.push_back(submap_);
   mapper_.set_submap(submap_);
@@ -46,7 +54,7 @@ FrameResult FrontProcess::process(const io::Frame& in) {
           grey, options_.monocular ? cv::Mat() : in.depth,
           options_.monocular && tracker_.state() == TrackingState::kNotInitialised ? init_extractor_ : extractor_,
           camera_, options_.tracking.virtual_baseline, options_.tracking.max_depth, options_.tracking.max_depth_step));
-  const bool flow = options_.tracking.flow(options_.monocular);
+  const bool flow = options_.tracking.flow(options_.monocular) && flow_budget_.active();
   if (flow && options_.tracking.flow_depth && !options_.monocular && in.depth.type() == CV_32F) frame.depth = in.depth;
   if (flow)
     cv::buildOpticalFlowPyramid(grey, frame.flow_pyramid,
@@ -124,6 +132,10 @@ FrameResult FrontProcess::process(const io::Frame& in) {
   }
   r.wait_seconds = wait_seconds;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - wait_seconds;
+  r.flow = flow;
+  // The budget weighs the frames the flow can run on: tracked ones (not initialisation or lost frames).
+  if (options_.tracking.flow(options_.monocular) && r.tracked && r.state == TrackingState::kTracking)
+    flow_budget_.record(r.seconds);
   return r;
 }
 

@@ -331,6 +331,13 @@ TEST(CliPipeline, MonocularRunIsAccurateAndDeterministic) {
   EXPECT_EQ(drift.at("windows").get<int>(), 4) << drift.dump();
   EXPECT_LT(std::abs(drift.at("slope_percent_per_s").get<double>()), 1.0) << drift.dump();
   EXPECT_NE(read_all(dir / "a" / "report.md").find("- scale drift "), std::string::npos);
+  // The optical flow (on in monocular) ignores its time budget here: every frame ran it.
+  EXPECT_EQ(nlohmann::json::parse(read_all(dir / "a" / "report.json")).at("flow_frames").get<int>(), 150);
+  EXPECT_NE(read_all(dir / "a" / "report.md").find("- optical flow: on 150 of 150 frames"), std::string::npos);
+  const std::string timing = read_all(dir / "a" / "timing.csv");
+  EXPECT_EQ(timing.rfind("timestamp,seconds,extract_seconds,mapping_seconds,wait_seconds,flow\n", 0), 0u);
+  EXPECT_EQ(std::count(timing.begin(), timing.end(), '\n'), 151);
+  EXPECT_EQ(timing.find(",0\n"), std::string::npos) << "a frame without the flow";
   for (const char* f : {"trajectory.txt", "frames.csv", "keyframes.txt", "points.ply"})
     EXPECT_EQ(read_all(dir / "a" / f), read_all(dir / "b" / f)) << f << " differs between two --deterministic runs";
   EXPECT_NE(read_all(dir / "a" / "frames.csv").find(",backfilled,"), std::string::npos);

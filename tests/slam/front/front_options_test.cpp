@@ -48,19 +48,23 @@ TEST(FrontOptions, TrackingAndMappingSectionsOverrideDefaults) {
   EXPECT_EQ(FrontOptions{}.tracking.pose_solver, "ceres");
 }
 
-// The optical flow is off by default; each mode has its own key.
-TEST(FrontOptions, FlowIsOffByDefaultAndHasAKeyPerMode) {
+// The optical flow is on by default in monocular (under its time budget), off in RGB-D; each mode
+// has its own key.
+TEST(FrontOptions, FlowIsOnInMonocularByDefaultAndHasAKeyPerMode) {
   const FrontOptions d = load_front_options(io::parse_settings(kBase, "t.yaml"));
   EXPECT_FALSE(d.tracking.flow(false));
-  EXPECT_FALSE(d.tracking.flow(true));
-  const FrontOptions rgbd = load_front_options(
-      io::parse_settings(std::string(kBase) + "tracking:\n  flow_extend: true\n", "t.yaml"));
+  EXPECT_TRUE(d.tracking.flow(true));
+  const FrontOptions rgbd = load_front_options(io::parse_settings(
+      std::string(kBase) + "tracking:\n  flow_extend: true\n  flow_extend_mono: false\n", "t.yaml"));
   EXPECT_TRUE(rgbd.tracking.flow(false));
   EXPECT_FALSE(rgbd.tracking.flow(true));
-  const FrontOptions mono = load_front_options(
-      io::parse_settings(std::string(kBase) + "tracking:\n  flow_extend_mono: true\n", "t.yaml"));
-  EXPECT_FALSE(mono.tracking.flow(false));
-  EXPECT_TRUE(mono.tracking.flow(true));
+  // Its time budget, per mode too (the targets at 640x480 by default).
+  EXPECT_DOUBLE_EQ(d.tracking.flow_budget_ms_for(true), 10.0);
+  EXPECT_DOUBLE_EQ(d.tracking.flow_budget_ms_for(false), 15.0);
+  const FrontOptions budget = load_front_options(
+      io::parse_settings(std::string(kBase) + "tracking:\n  flow_budget_ms_mono: 0\n  flow_budget_frames: 10\n", "t.yaml"));
+  EXPECT_DOUBLE_EQ(budget.tracking.flow_budget_ms_for(true), 0.0);
+  EXPECT_EQ(budget.tracking.flow_budget_frames, 10);
 }
 
 TEST(FrontOptions, OrbSlamStereoKeysSetTheVirtualBaselineAndCloseDepth) {
@@ -92,6 +96,8 @@ TEST(FrontOptions, InvalidValuesNameTheKey) {
   expect_error("tracking:\n  flow_max_age: 0\n", "tracking.flow_max_age");
   expect_error("tracking:\n  flow_extend: maybe\n", "tracking.flow_extend");
   expect_error("tracking:\n  flow_extend_mono: 2\n", "tracking.flow_extend_mono");
+  expect_error("tracking:\n  flow_budget_ms_mono: -1\n", "tracking.flow_budget_ms_mono");
+  expect_error("tracking:\n  flow_budget_frames: 0\n", "tracking.flow_budget_frames");
   expect_error("mapping:\n  redundant_ratio: 1.5\n", "mapping.redundant_ratio");
   expect_error("mapping:\n  inline_busy_seconds: -0.1\n", "mapping.inline_busy_seconds");
   expect_error("mapping:\n  min_parallax_deg_mono: 95\n", "mapping.min_parallax_deg_mono");

@@ -174,6 +174,7 @@ TEST(FrontProcess, TracksWithTheMapperOnItsOwnThread) {
   FrontOptions options = load_front_options(settings);
   options.mapping_thread = true;
   options.tracking.flow_extend = true;
+  options.tracking.flow_budget_ms = 0;  // on every frame, however slow the sanitizer makes them
   io::ReaderOptions ro;
   ro.depth_factor = settings.camera.depth_map_factor;
   auto reader = io::open_sequence(seq, ro);
@@ -252,6 +253,65 @@ TEST(FrontProcess, FlowFollowsThePointsTheDescriptorSearchesMiss) {
   EXPECT_GT(mono_on.observations_per_point, mono_off.observations_per_point);
   RecordProperty("mono_observations_per_point_off", std::to_string(mono_off.observations_per_point));
   RecordProperty("mono_observations_per_point_on", std::to_string(mono_on.observations_per_point));
+}
+
+// The flow under its time budget (tracking.flow_budget_ms_mono): a threaded run whose frames take
+// longer than the budget runs the flow for its first window of tracked frames only, then stops; a
+// --deterministic one (no mapper thread) ignores the budget and runs it on every frame.
+TEST(FrontProcess, FlowStopsOverItsTimeBudgetInThreadedRunsOnly) {
+  const fs::path bin = wardmap_binary();
+  if (!fs::exists(bin)) GTEST_SKIP() << "wardmap executable not built: " << bin;
+  const fs::path seq = test::scratch_dir() / "aisle_budget";
+  std::string log;
+  ASSERT_EQ(test::run_command(bin.string() + " synth --scenario aisle_straight --variant quick --seed 2 --frames 60 --out " +
+                                  seq.string(),
+                              &log),
+            0)
+      << log;
+  const io::Settings settings = io::load_settings(seq / "settings.yaml");
+  auto reader = io::open_sequence(seq);
+  const auto run = [&](bool threaded, double budget_ms) {
+    FrontOptions options = load_front_options(settings);
+    options.monocular = true;
+    options.mapping_thread = threaded;
+    options.tracking.flow_extend_mono = true;
+    options.tracking.flow_budget_ms_mono = budget_ms;
+    options.tracking.flow_budget_frames = 10;
+    options.tracking.flow_budget_retry = 1000;
+    FrontProcess front(options, settings.camera.camera);
+    std::vector<FrameResult> results;
+    for (size_t i = 0; i < reader->size(); ++i) results.push_back(front.process(reader->read(i)));
+    front.finish();
+    return results;
+  };
+  const auto flow_frames = [](const std::vector<FrameResult>& rs) {
+    return std::count_if(rs.begin(), rs.end(), [](const FrameResult& r) { return r.flow; });
+  };
+  // 1 microsecond: every frame is over it.
+  const std::vector<FrameResult> threaded = run(true, 1e-3);
+  const auto first_tracked = std::find_if(threaded.begin(), threaded.end(), [](const FrameResult& r) {
+    return r.tracked && r.state == TrackingState::kTracking;
+  });
+  ASSERT_LT(first_tracked + 20, threaded.end()) << "the monocular map was not made in time";
+  // On until the first window of 10 tracked frames is weighed, then off for good (retry 1000).
+  for (auto r = threaded.begin(); r != threaded.end(); ++r) {
+    const bool in_first_window = r <= first_tracked + 9;
+    EXPECT_EQ(r->flow, in_first_window) << "frame " << (r - threaded.begin());
+  }
+  const std::vector<FrameResult> deterministic = run(false, 1e-3);
+  EXPECT_EQ(flow_frames(deterministic), static_cast<long>(deterministic.size()));
+  const std::vector<FrameResult> no_budget = run(true, 0.0);
+  EXPECT_EQ(flow_frames(no_budget), static_cast<long>(no_budget.size()));
+  // The budget is given for 640 x 480 and scales with the pixels: KITTI's 1241 x 376 gets 1.52 times it.
+  TrackingOptions t;
+  PinholeCamera vga, kitti;
+  vga.width = 640;
+  vga.height = 480;
+  kitti.width = 1241;
+  kitti.height = 376;
+  EXPECT_DOUBLE_EQ(flow_budget_seconds(t, true, vga), 0.010);
+  EXPECT_NEAR(flow_budget_seconds(t, true, kitti), 0.010 * 1241 * 376 / (640.0 * 480.0), 1e-12);
+  EXPECT_DOUBLE_EQ(flow_budget_seconds(t, false, vga), 0.015);
 }
 
 }  // namespace wardmap::slam
