@@ -138,7 +138,7 @@ double run_slam_job(const SlamJob& job) {
   std::string frames_csv = "timestamp,status,submap\n", timing_csv = "timestamp,seconds,extract_seconds,mapping_seconds,wait_seconds,flow\n";
   std::vector<double> seconds, stamps;
   double wait_seconds = 0;  // the tracker waiting for a threaded mapper behind its time
-  size_t flow_frames = 0;  // frames that ran the optical flow (tracking.flow_extend / _mono, flow_budget_ms)
+  size_t flow_frames = 0;  // frames with the optical flow on (tracking.flow_extend / _mono, flow_budget_ms)
   std::vector<std::string> statuses;
   std::vector<int> submap_of;
   char line[160];
@@ -221,7 +221,7 @@ double run_slam_job(const SlamJob& job) {
                  // the tracker waiting for a threaded mapper still busy (the sequence time since the last
                  // keyframe, or mapping.max_lag_frames after it)
                  {"mapper_wait_seconds", wait_seconds},
-                 // frames that ran the optical flow: all with it on and no budget, fewer when it was over
+                 // frames with the optical flow on: all with it on and no budget, fewer when it was over
                  // tracking.flow_budget_ms(_mono), none with it off
                  {"flow_frames", flow_frames}};
   report["first_frame"] = reader->first_frame();  // of the stretch run (--first-frame)

@@ -113,7 +113,7 @@ void run_front(benchmark::State& state, const char* sequence, const char* settin
   // shows best how fast the host is that hour (ORB alone 4.5-4.8 ms a 7-Scenes frame on a quiet one).
   state.counters["extract_median_ms"] = pct(extract_seconds, 0.5);
   state.counters["tracked_pct"] = 100.0 * tracked / static_cast<double>(seconds.size());
-  state.counters["flow_pct"] = 100.0 * flowed / static_cast<double>(seconds.size());  // frames running the flow
+  state.counters["flow_pct"] = 100.0 * flowed / static_cast<double>(seconds.size());  // frames with the flow on
   state.counters["keyframe_pct"] = 100.0 * keyframes / static_cast<double>(seconds.size());
   state.counters["ba_ms_per_kf"] = mapped > 0 ? 1e3 * ba_seconds / mapped : 0.0;
   state.counters["max_kf_queue"] = static_cast<double>(max_queue);

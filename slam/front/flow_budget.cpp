@@ -41,4 +41,11 @@ void FlowBudget::record(double seconds) {
   }
 }
 
+void FlowBudget::restart() {
+  samples_.clear();
+  if (!active_) off_in_a_row_ = 0;
+  active_ = true;
+  retrying_ = false;
+}
+
 }  // namespace wardmap::slam

@@ -10,7 +10,7 @@
 //   less the first off-window's after it) fits the budget, or after `retry` off-windows in a row, to
 //   measure its cost again (the host's load changes). A retry over the budget doubles the wait for
 //   the next (each costs a window over it); a window on within the budget resets it to `retry`.
-// It starts on. A budget of 0 keeps the flow on for good (--deterministic runs: the choice must not
+// It starts on, and again with each new submap (restart). A budget of 0 keeps the flow on for good (--deterministic runs: the choice must not
 // depend on timing).
 #pragma once
 
@@ -27,6 +27,9 @@ class FlowBudget {
   bool active() const { return active_; }
   // One tracked frame's time (extraction and tracking), spent with the flow if active() was true.
   void record(double seconds);
+  // A new map starts (a new submap): the flow on for its first window, whatever the budget said, as
+  // for the first map (a young monocular map without it can lose its scale: docs/EXPERIMENTS.md).
+  void restart();
   // Windows completed so far with the flow on and off.
   int windows_on() const { return windows_on_; }
   int windows_off() const { return windows_off_; }

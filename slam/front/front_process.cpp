@@ -128,6 +128,7 @@ FrameResult FrontProcess::process(const io::Frame& in) {
     submaps_.push_back(submap_);
     mapper_.set_submap(submap_);
     tracker_.set_submap(submap_, last_tracked_pose_cw_);
+    flow_budget_.restart();  // the new map's first window has the flow, as the first map's had
     r.new_submap = true;
   }
   r.wait_seconds = wait_seconds;

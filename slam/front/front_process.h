@@ -44,7 +44,9 @@ struct FrameResult {
   double wait_seconds = 0;
   double extract_seconds = 0;  // of which ORB extraction
   double mapping_seconds = 0;  // of which local mapping run inline (keyframes only; 0 when threaded)
-  bool flow = false;           // the optical flow ran on this frame (tracking.flow_extend / _mono, flow_budget_ms)
+  // The optical flow was on for this frame (tracking.flow_extend / _mono, within flow_budget_ms): its
+  // pyramid was built, and points were followed if the frame was tracked.
+  bool flow = false;
 };
 
 class FrontProcess {

@@ -101,5 +101,27 @@ TEST(FlowBudget, FailedRetriesBackOff) {
   EXPECT_EQ(windows_until_on(), 2);
 }
 
+// A new submap gets the flow for its first window, whatever the budget decided for the old one; the
+// window then decides as usual, and the measured cost is kept.
+TEST(FlowBudget, RestartGivesANewMapItsFirstWindow) {
+  FlowBudget b(0.010, 4, 100);
+  feed(b, 4, 0.012);  // over: off
+  feed(b, 2, 0.008);  // half an off-window
+  ASSERT_FALSE(b.active());
+  b.restart();
+  EXPECT_TRUE(b.active());
+  const std::vector<bool> before = feed(b, 4, 0.012);  // a whole window on, the half window dropped
+  EXPECT_EQ(before, std::vector<bool>(4, true));
+  EXPECT_FALSE(b.active());
+  EXPECT_EQ(b.windows_on(), 2);
+  EXPECT_EQ(b.windows_off(), 0);
+  b.restart();
+  feed(b, 4, 0.009);  // within the budget: stays on
+  EXPECT_TRUE(b.active());
+  FlowBudget none(0.0, 4, 100);  // no budget: restart changes nothing
+  none.restart();
+  EXPECT_TRUE(none.active());
+}
+
 }  // namespace
 }  // namespace wardmap::slam
