@@ -10,8 +10,8 @@
 //   less the first off-window's after it) fits the budget, or after `retry` off-windows in a row, to
 //   measure its cost again (the host's load changes). A retry over the budget doubles the wait for
 //   the next (each costs a window over it); a window on within the budget resets it to `retry`.
-// It starts on, and again with each new submap (restart). A budget of 0 keeps the flow on for good (--deterministic runs: the choice must not
-// depend on timing).
+// It starts on, and again with each new submap (restart). A budget of 0 keeps the flow on for good
+// (--deterministic runs: the choice must not depend on timing).
 #pragma once
 
 #include <vector>

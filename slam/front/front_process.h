@@ -72,7 +72,6 @@ class FrontProcess {
   const Submap& submap() const { return *submap_; }
   const std::vector<std::shared_ptr<Submap>>& submaps() const { return submaps_; }
   const LocalMapperStats& mapper_stats() const { return mapper_.stats(); }
-  const FlowBudget& flow_budget() const { return flow_budget_; }
   size_t mapper_queue_length() const { return mapper_.queued(); }
   TrackingState state() const { return tracker_.state(); }
 

@@ -331,7 +331,7 @@ TEST(CliPipeline, MonocularRunIsAccurateAndDeterministic) {
   EXPECT_EQ(drift.at("windows").get<int>(), 4) << drift.dump();
   EXPECT_LT(std::abs(drift.at("slope_percent_per_s").get<double>()), 1.0) << drift.dump();
   EXPECT_NE(read_all(dir / "a" / "report.md").find("- scale drift "), std::string::npos);
-  // The optical flow (on in monocular) ignores its time budget here: every frame ran it.
+  // The optical flow (on in monocular) ignores its time budget here: it was on for every frame.
   EXPECT_EQ(nlohmann::json::parse(read_all(dir / "a" / "report.json")).at("flow_frames").get<int>(), 150);
   EXPECT_NE(read_all(dir / "a" / "report.md").find("- optical flow: on 150 of 150 frames"), std::string::npos);
   const std::string timing = read_all(dir / "a" / "timing.csv");

@@ -25,19 +25,21 @@ fs::path wardmap_binary() {
   return test::binary_dir() / "apps" / "wardmap";
 }
 
+// `wardmap synth ARGS --out SEQ`; a failure carries the command's output.
+::testing::AssertionResult render(const fs::path& seq, const std::string& args) {
+  std::string log;
+  if (test::run_command(wardmap_binary().string() + " synth " + args + " --out " + seq.string(), &log) == 0)
+    return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "wardmap synth " << args << ":\n" << log;
+}
+
 }  // namespace
 
 TEST(FrontProcess, TracksASyntheticRgbdAisle) {
   const fs::path bin = wardmap_binary();
   if (!fs::exists(bin)) GTEST_SKIP() << "wardmap executable not built: " << bin;
   const fs::path seq = test::scratch_dir() / "aisle";
-  std::string log;
-  ASSERT_EQ(
-      test::run_command(
-          bin.string() + " synth --scenario aisle_straight --variant slow --seed 1 --frames 90 --out " + seq.string(),
-          &log),
-      0)
-      << log;
+  ASSERT_TRUE(render(seq, "--scenario aisle_straight --variant slow --seed 1 --frames 90"));
 
   const io::Settings settings = io::load_settings(seq / "settings.yaml");
   const FrontOptions options = load_front_options(settings);
@@ -91,12 +93,7 @@ TEST(FrontProcess, RelocalisesInTheSameSubmapAfterBlindFrames) {
   const fs::path bin = wardmap_binary();
   if (!fs::exists(bin)) GTEST_SKIP() << "wardmap executable not built: " << bin;
   const fs::path seq = test::scratch_dir() / "aisle_reloc";
-  std::string log;
-  ASSERT_EQ(test::run_command(bin.string() + " synth --scenario aisle_straight --variant slow --seed 2 --frames 90 --out " +
-                                  seq.string(),
-                              &log),
-            0)
-      << log;
+  ASSERT_TRUE(render(seq, "--scenario aisle_straight --variant slow --seed 2 --frames 90"));
   const io::Settings settings = io::load_settings(seq / "settings.yaml");
   FrontOptions options = load_front_options(settings);
   // The jump is a teleport (2 s of motion in 0.1 s): lift the RGB-D motion limit on relocalisation.
@@ -164,12 +161,7 @@ TEST(FrontProcess, TracksWithTheMapperOnItsOwnThread) {
   const fs::path bin = wardmap_binary();
   if (!fs::exists(bin)) GTEST_SKIP() << "wardmap executable not built: " << bin;
   const fs::path seq = test::scratch_dir() / "aisle_thread";
-  std::string log;
-  ASSERT_EQ(test::run_command(bin.string() + " synth --scenario aisle_left_turn --variant quick --seed 3 --frames 90 --out " +
-                                  seq.string(),
-                              &log),
-            0)
-      << log;
+  ASSERT_TRUE(render(seq, "--scenario aisle_left_turn --variant quick --seed 3 --frames 90"));
   const io::Settings settings = io::load_settings(seq / "settings.yaml");
   FrontOptions options = load_front_options(settings);
   options.mapping_thread = true;
@@ -202,12 +194,7 @@ TEST(FrontProcess, FlowFollowsThePointsTheDescriptorSearchesMiss) {
   const fs::path bin = wardmap_binary();
   if (!fs::exists(bin)) GTEST_SKIP() << "wardmap executable not built: " << bin;
   const fs::path seq = test::scratch_dir() / "aisle_flow";
-  std::string log;
-  ASSERT_EQ(test::run_command(bin.string() + " synth --scenario aisle_straight --variant quick --seed 2 --frames 90 --out " +
-                                  seq.string(),
-                              &log),
-            0)
-      << log;
+  ASSERT_TRUE(render(seq, "--scenario aisle_straight --variant quick --seed 2 --frames 90"));
   const io::Settings settings = io::load_settings(seq / "settings.yaml");
   io::ReaderOptions ro;
   ro.depth_factor = settings.camera.depth_map_factor;
@@ -262,12 +249,7 @@ TEST(FrontProcess, FlowStopsOverItsTimeBudgetInThreadedRunsOnly) {
   const fs::path bin = wardmap_binary();
   if (!fs::exists(bin)) GTEST_SKIP() << "wardmap executable not built: " << bin;
   const fs::path seq = test::scratch_dir() / "aisle_budget";
-  std::string log;
-  ASSERT_EQ(test::run_command(bin.string() + " synth --scenario aisle_straight --variant quick --seed 2 --frames 60 --out " +
-                                  seq.string(),
-                              &log),
-            0)
-      << log;
+  ASSERT_TRUE(render(seq, "--scenario aisle_straight --variant quick --seed 2 --frames 60"));
   const io::Settings settings = io::load_settings(seq / "settings.yaml");
   auto reader = io::open_sequence(seq);
   const auto run = [&](bool threaded, double budget_ms) {
