@@ -20,7 +20,6 @@ namespace wardmap::slam {
 
 class FlowBudget {
  public:
-  FlowBudget() = default;
   FlowBudget(double budget_seconds, int window, int retry);
 
   // Whether the next frame runs the flow.
@@ -35,15 +34,15 @@ class FlowBudget {
   int windows_off() const { return windows_off_; }
 
  private:
-  double budget_ = 0;
-  int window_ = 30;
-  int retry_ = 10;
+  double budget_;
+  int window_;
+  int retry_;
   bool active_ = true;
   std::vector<double> samples_;
   double last_on_ = -1;   // median of the last on-window (s); -1: none yet
   double cost_ = -1;      // the flow's cost: last_on_ less the next off-window's median; -1: unknown
   int off_in_a_row_ = 0;  // off-windows since the flow was last on
-  int retry_interval_ = 10;  // off-windows before the next retry
+  int retry_interval_;       // off-windows before the next retry
   bool retrying_ = false;    // the flow is on to measure its cost again
   int windows_on_ = 0, windows_off_ = 0;
 };
