@@ -37,6 +37,18 @@ nlohmann::json scale_drift_json(const slam::eval::ScaleDriftResult& drift) {
   return j;
 }
 
+nlohmann::json overrides_json(const std::vector<slam::io::SettingOverride>& overrides) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& o : overrides) j.push_back(o.key + "=" + o.value);
+  return j;
+}
+
+std::string overrides_text(const std::vector<slam::io::SettingOverride>& overrides) {
+  std::string s;
+  for (const auto& o : overrides) s += (s.empty() ? ", with --set " : ", ") + o.key + "=" + o.value;
+  return s;
+}
+
 std::string scale_drift_text(const slam::eval::ScaleDriftResult& drift) {
   char buf[160];
   if (drift.valid)

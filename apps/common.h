@@ -7,6 +7,7 @@
 
 #include "slam/eval/trajectory_eval.h"
 #include "slam/io/sequence.h"
+#include "slam/io/settings.h"
 
 namespace wardmap::apps {
 
@@ -24,6 +25,11 @@ slam::io::ReaderOptions reader_options(const ReaderArgs& args);
 
 // The scale drift as report.json and `wardmap eval --json` write it: null figures when not valid.
 nlohmann::json scale_drift_json(const slam::eval::ScaleDriftResult& drift);
+
+// The --set overrides of a run, for report.json ("KEY=VALUE" strings, in order) and report.md
+// (", with --set KEY=VALUE, ..." after the settings file's name; empty without overrides).
+nlohmann::json overrides_json(const std::vector<slam::io::SettingOverride>& overrides);
+std::string overrides_text(const std::vector<slam::io::SettingOverride>& overrides);
 // The same as `wardmap eval` prints it and report.md writes it: "+s +- e % a second over n windows
 // of w s (+c % over the run)", or why there is none.
 std::string scale_drift_text(const slam::eval::ScaleDriftResult& drift);

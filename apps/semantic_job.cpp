@@ -8,6 +8,7 @@
 #include <utility>
 #include <nlohmann/json.hpp>
 
+#include "apps/common.h"
 #include "apps/detection_cache.h"
 #include "apps/progress.h"
 #include "semantics/detection/detector_factory.h"
@@ -103,7 +104,19 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
   const auto& info = reader->info();
   auto setup = std::make_unique<SemanticSetup>();
   std::optional<slam::io::Settings> settings;
-  if (!job.settings.empty()) settings = slam::io::load_settings(job.settings);
+  if (!job.settings.empty())
+    slam::io::blame_overrides(job.settings_overrides,
+                              [&] { settings = slam::io::load_settings(job.settings, job.settings_overrides); });
+  // The semantics and detection sections: the file's, else those --set alone gives (the camera is
+  // then the dataset's, so only those sections' keys may be set).
+  YAML::Node sections = settings ? settings->root : YAML::Node(YAML::NodeType::Map);
+  if (!settings) {
+    for (const auto& o : job.settings_overrides)
+      if (o.key.rfind("semantics.", 0) != 0 && o.key.rfind("detection.", 0) != 0)
+        throw InputError("--set", "'" + o.key + "': without --settings, only semantics.* and detection.* keys can be set");
+    slam::io::apply_setting_overrides(sections, job.settings_overrides);
+  }
+  const fs::path sections_file = settings ? job.settings : fs::path(job.settings_overrides.empty() ? "" : "--set");
   slam::PinholeCamera& camera = setup->camera;
   if (settings) camera = settings->camera.camera;
   else if (info.calibration) camera = *info.calibration;
@@ -116,9 +129,12 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
 
   semantics::SemanticOptions& options = setup->options;
   semantics::DetectorOptions det;
-  if (settings) {
-    options = semantics::load_semantic_options(settings->section("semantics"), job.settings);
-    det = semantics::detector_options_from_yaml(settings->section("detection"), job.settings);
+  if (!sections_file.empty()) {
+    const YAML::Node& doc = sections;
+    slam::io::blame_overrides(job.settings_overrides, [&] {
+      options = semantics::load_semantic_options(doc["semantics"], sections_file);
+      det = semantics::detector_options_from_yaml(doc["detection"], sections_file);
+    });
   }
   options.association.mode = job.association;
   options.association.crf.seed = job.seed;
@@ -128,7 +144,7 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
   det.landmark_set = !job.landmark_set.empty() ? job.landmark_set
                      : info.kind == slam::io::DatasetKind::Kitti ? "road"
                                                                  : "indoor";
-  if (auto err = det.validate()) throw InputError(job.settings.empty() ? "--detector" : job.settings.string(), *err);
+  if (auto err = det.validate()) throw InputError(sections_file.empty() ? "--detector" : sections_file.string(), *err);
   setup->detector = semantics::make_detector(det, job.sequence);
   semantics::SemanticMapper::EmbedFn embed;
   if (job.embedding) {
@@ -320,8 +336,12 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
                                        {"measurement_median_per_keyframe", median(T.measurement)},
                                        {"mot_total", T.mot}, {"hdp_total", T.hdp}, {"pose_selection_total", T.pose_selection}}}};
     report["first_frame"] = reader->first_frame();  // of the stretch run (--first-frame)
+    report["settings"] = job.settings.string();     // empty: the defaults
+    report["settings_overrides"] = overrides_json(job.settings_overrides);
     std::string md = "# wardmap run\n\n- sequence: `" + job.sequence.string() + "`\n- poses: " + (own_run ? "ground truth" : "SLAM keyframes") + "\n- detector: " +
-                     job.detector + "\n- association: " + job.association + "\n- keyframes: " +
+                     job.detector + "\n- association: " + job.association + "\n- settings: " +
+                     (job.settings.empty() ? std::string("the defaults") : "`" + job.settings.string() + "`") +
+                     overrides_text(job.settings_overrides) + "\n- keyframes: " +
                      std::to_string(run.keyframes.size()) + ", groups: " + std::to_string(run.result.num_groups) +
                      ", landmarks: " + std::to_string(run.result.landmarks.size()) + "\n";
     if (!own_run)  // keyframe images queued for detection while the SLAM ran (the rest: after it)

@@ -18,6 +18,7 @@
 #include "semantics/semantic_mapper.h"
 #include "slam/core/trajectory.h"
 #include "slam/io/sequence.h"
+#include "slam/io/settings.h"
 
 namespace wardmap::apps {
 
@@ -28,6 +29,8 @@ struct SemanticJob {
   std::filesystem::path sequence;
   slam::io::ReaderOptions reader;     // --format, --first-frame, --frames, ...
   std::filesystem::path settings;     // optional: camera + `semantics` / `detection` sections
+  // --set KEY=VALUE, over the settings file's keys (without a file: semantics.* and detection.* only)
+  std::vector<slam::io::SettingOverride> settings_overrides;
   std::filesystem::path out;          // run folder; empty: write nothing
   std::string detector = "annotations";
   std::string association = "hierarchical";

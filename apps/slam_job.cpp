@@ -111,8 +111,12 @@ double run_slam_job(const SlamJob& job) {
     if (settings_file != info.root / "settings.yaml")
       spdlog::info("settings: {} (shipped for this dataset; --settings to give others)", settings_file.string());
   }
-  const slam::io::Settings settings = slam::io::load_settings(settings_file);
-  slam::FrontOptions options = slam::load_front_options(settings);
+  slam::io::Settings settings;
+  slam::FrontOptions options;
+  slam::io::blame_overrides(job.settings_overrides, [&] {
+    settings = slam::io::load_settings(settings_file, job.settings_overrides);
+    options = slam::load_front_options(settings);
+  });
   if (settings.camera.depth_map_factor) reader->set_depth_factor(*settings.camera.depth_map_factor);
   const std::string mode = job.mode.empty() ? (info.has_depth ? "rgbd" : "mono") : job.mode;
   if (mode == "rgbd" && !info.has_depth)
@@ -225,6 +229,7 @@ double run_slam_job(const SlamJob& job) {
                  // tracking.flow_budget_ms(_mono), none with it off
                  {"flow_frames", flow_frames}};
   report["first_frame"] = reader->first_frame();  // of the stretch run (--first-frame)
+  report["settings_overrides"] = overrides_json(job.settings_overrides);  // --set KEY=VALUE, in order
   if (interrupted) report["interrupted"] = signal_name(interrupted);
   {
     // What local mapping did, over the run (all submaps).
@@ -244,6 +249,7 @@ double run_slam_job(const SlamJob& job) {
                    (job.deterministic ? ", deterministic (mapping inline)" : job.realtime ? ", threaded, input at the sequence's rate (--realtime)" : ", threaded") +
                    "\n- frames: " + std::to_string(reader->size()) + ", in the final map: " + std::to_string(traj.size()) +
                    ", submaps: " + std::to_string(front.submaps().size()) + "\n";
+  md += "- settings: `" + settings_file.string() + "`" + overrides_text(job.settings_overrides) + "\n";
   if (interrupted)
     md += "- interrupted (" + signal_name(interrupted) + ") after frame " + std::to_string(processed) + " of " +
           std::to_string(reader->size()) + ": the figures below are for those frames\n";

@@ -69,51 +69,120 @@ void reject_repeated_keys(const YAML::Node& node, const std::string& path, const
 // The sections wardmap reads beside ORB-SLAM3's keys.
 const char* const kSections[] = {"tracking", "mapping", "semantics", "detection"};
 
+std::vector<std::string> split_dotted(const std::string& key) {
+  std::vector<std::string> parts;
+  for (size_t start = 0;;) {
+    const size_t dot = key.find('.', start);
+    parts.push_back(key.substr(start, dot == std::string::npos ? std::string::npos : dot - start));
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  return parts;
+}
+
+bool in_a_section(const std::string& key) {
+  for (const char* section : kSections)
+    if (key.rfind(std::string(section) + ".", 0) == 0) return true;
+  return false;
+}
+
+// Sets root[a][b]...[last] = value for the dotted key "a.b. ... .last", creating the sections that
+// are absent or written empty ("tracking:"). With `replace` false, a key already set is an error.
+// Errors name `where` (the file, or --set) and `line`.
+void set_dotted(YAML::Node& root, const std::string& key, const YAML::Node& value, bool replace, const std::string& where,
+                int line) {
+  const std::vector<std::string> parts = split_dotted(key);
+  YAML::Node node = root;
+  std::string path;
+  for (size_t i = 0; i + 1 < parts.size(); ++i) {
+    path = path.empty() ? parts[i] : path + "." + parts[i];
+    if (parts[i].empty()) throw InputError(where, "key '" + key + "': empty part in a dotted key", line);
+    YAML::Node child = node[parts[i]];
+    if (!child || child.IsNull()) {
+      node[parts[i]] = YAML::Node(YAML::NodeType::Map);
+      child = node[parts[i]];
+    }
+    if (!child.IsMap()) throw InputError(where, "key '" + key + "': '" + path + "' is not a section", line);
+    node.reset(child);
+  }
+  if (parts.back().empty()) throw InputError(where, "key '" + key + "': empty part in a dotted key", line);
+  if (!replace && node[parts.back()])
+    throw InputError(where, "key '" + key + "' is set twice: once dotted, once inside its section; keep one", line);
+  node[parts.back()] = value;
+}
+
 // A top-level key written in the dotted form the documentation uses ("tracking.pose_solver: lm",
 // "semantics.groups.size: 6") is moved into its section, as if it had been nested there. Setting
 // the same key both ways is an error.
 void nest_dotted_keys(YAML::Node& root, const fs::path& file) {
   std::vector<std::pair<std::string, YAML::Node>> dotted;
-  for (const auto& kv : root) {
-    if (!kv.first.IsScalar()) continue;
-    const std::string key = kv.first.Scalar();
-    for (const char* section : kSections)
-      if (key.rfind(std::string(section) + ".", 0) == 0) dotted.emplace_back(key, kv.second);
-  }
+  for (const auto& kv : root)
+    if (kv.first.IsScalar() && in_a_section(kv.first.Scalar())) dotted.emplace_back(kv.first.Scalar(), kv.second);
   for (auto& [key, value] : dotted) {
     const int line = root[key].Mark().line + 1;
-    std::vector<std::string> parts;
-    for (size_t start = 0;;) {
-      const size_t dot = key.find('.', start);
-      parts.push_back(key.substr(start, dot == std::string::npos ? std::string::npos : dot - start));
-      if (dot == std::string::npos) break;
-      start = dot + 1;
-    }
-    YAML::Node node = root;
-    std::string path;
-    for (size_t i = 0; i + 1 < parts.size(); ++i) {
-      path = path.empty() ? parts[i] : path + "." + parts[i];
-      if (parts[i].empty()) throw InputError(file.string(), "key '" + key + "': empty part in a dotted key", line);
-      YAML::Node child = node[parts[i]];
-      if (!child || child.IsNull()) {  // absent, or written empty ("tracking:")
-        node[parts[i]] = YAML::Node(YAML::NodeType::Map);
-        child = node[parts[i]];
-      }
-      if (!child.IsMap())
-        throw InputError(file.string(), "key '" + key + "': '" + path + "' is not a section", line);
-      node.reset(child);
-    }
-    if (parts.back().empty() || node[parts.back()])
-      throw InputError(file.string(),
-                       "key '" + key + "' is set twice: once dotted, once inside its section; keep one", line);
-    node[parts.back()] = value;
+    set_dotted(root, key, value, false, file.string(), line);
     root.remove(key);
   }
 }
 
+// A copy of a parsed node without its marks: errors about a --set value must not point at a line
+// of the settings file.
+YAML::Node without_marks(const YAML::Node& n) {
+  if (n.IsScalar()) return YAML::Node(n.Scalar());
+  YAML::Node out;
+  if (n.IsSequence())
+    for (const auto& item : n) out.push_back(without_marks(item));
+  else if (n.IsMap())
+    for (const auto& kv : n) out[kv.first.Scalar()] = without_marks(kv.second);
+  return out;
+}
+
 }  // namespace
 
-Settings parse_settings(const std::string& text, const fs::path& file) {
+SettingOverride parse_setting_override(const std::string& text) {
+  const size_t eq = text.find('=');
+  if (eq == std::string::npos)
+    throw InputError("--set", "'" + text + "': expected KEY=VALUE (e.g. tracking.flow_extend_mono=false)");
+  SettingOverride o{text.substr(0, eq), text.substr(eq + 1)};
+  if (o.key.empty()) throw InputError("--set", "'" + text + "': the key before '=' is empty");
+  if (o.value.empty()) throw InputError("--set", "'" + text + "': the value after '=' is empty");
+  for (const char* section : kSections)
+    if (o.key == section)
+      throw InputError("--set", "'" + text + "': '" + o.key + "' is a whole section; set its keys one by one (" + o.key +
+                                    ".KEY=VALUE)");
+  return o;
+}
+
+void apply_setting_overrides(YAML::Node& root, const std::vector<SettingOverride>& overrides) {
+  for (const SettingOverride& o : overrides) {
+    YAML::Node value;
+    try {
+      value = without_marks(YAML::Load(o.value));
+    } catch (const YAML::ParserException& ex) {
+      throw InputError("--set", "'" + o.key + "=" + o.value + "': the value is not valid YAML: " + ex.msg);
+    }
+    if (in_a_section(o.key))
+      set_dotted(root, o.key, value, true, "--set", 0);
+    else
+      root[o.key] = value;  // an ORB-SLAM3 key ("ORBextractor.nFeatures", "Camera1.fx"): dots are part of it
+  }
+}
+
+void blame_overrides(const std::vector<SettingOverride>& overrides, const std::function<void()>& load) {
+  try {
+    load();
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    for (const SettingOverride& o : overrides)
+      if (what.find("key '" + o.key + "'") != std::string::npos) {
+        const size_t colon = what.find(": ", e.file().size());
+        throw InputError("--set " + o.key + "=" + o.value, colon == std::string::npos ? what : what.substr(colon + 2));
+      }
+    throw;
+  }
+}
+
+Settings parse_settings(const std::string& text, const fs::path& file, const std::vector<SettingOverride>& overrides) {
   Settings s;
   s.file = file;
   try {
@@ -124,6 +193,7 @@ Settings parse_settings(const std::string& text, const fs::path& file) {
   if (!s.root.IsMap()) throw InputError(file.string(), "expected a YAML mapping of settings");
   reject_repeated_keys(s.root, "", file);
   nest_dotted_keys(s.root, file);
+  apply_setting_overrides(s.root, overrides);
   const YAML::Node& r = s.root;
   CameraSettings& c = s.camera;
   read_key(r, "Camera.type", c.type, file, "a string");
@@ -156,13 +226,13 @@ Settings parse_settings(const std::string& text, const fs::path& file) {
   return s;
 }
 
-Settings load_settings(const fs::path& file) {
+Settings load_settings(const fs::path& file, const std::vector<SettingOverride>& overrides) {
   if (!fs::exists(file)) throw InputError(file.string(), "settings file not found");
   std::ifstream in(file);
   if (!in) throw InputError(file.string(), "cannot open the settings file");
   std::stringstream ss;
   ss << in.rdbuf();
-  return parse_settings(ss.str(), file);
+  return parse_settings(ss.str(), file, overrides);
 }
 
 namespace {

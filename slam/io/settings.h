@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,12 +31,36 @@ struct Settings {
   YAML::Node section(const std::string& name) const { return root[name]; }
 };
 
-// Loads and validates; accepts OpenCV's `%YAML:1.0` header. Throws InputError naming the file and
-// the key (and the line for YAML syntax errors).
-Settings load_settings(const std::filesystem::path& file);
+// A setting given on the command line (`--set KEY=VALUE`). KEY is written as in a settings file:
+// dotted for wardmap's sections ("tracking.flow_extend_mono", "semantics.groups.size"), else a
+// top-level key, dots included (ORB-SLAM3's "ORBextractor.nFeatures"). VALUE is YAML ("false",
+// "1500", "[door, chair]"). It replaces the file's value or adds the key; it is then validated as
+// the file's own keys are (a misspelt key or a wrong type is an error naming the key).
+struct SettingOverride {
+  std::string key;
+  std::string value;
+};
+
+// Parses "KEY=VALUE"; throws InputError naming --set when there is no '=', the key or the value is
+// empty, or the key is a whole section.
+SettingOverride parse_setting_override(const std::string& text);
+
+// Sets each override in a settings document (a YAML mapping), in order (the last of a key wins).
+// Throws InputError naming --set for a value that is not YAML or a key whose parent is not a section.
+void apply_setting_overrides(YAML::Node& root, const std::vector<SettingOverride>& overrides);
+
+// Runs `load` (loading settings with overrides, or reading options from them). An InputError it
+// throws about a key an override set ("key 'tracking.x': ...") is rethrown naming that --set rather
+// than the file; any other error passes unchanged.
+void blame_overrides(const std::vector<SettingOverride>& overrides, const std::function<void()>& load);
+
+// Loads and validates, with `overrides` set over the file's keys first; accepts OpenCV's `%YAML:1.0`
+// header. Throws InputError naming the file and the key (and the line for YAML syntax errors).
+Settings load_settings(const std::filesystem::path& file, const std::vector<SettingOverride>& overrides = {});
 
 // Parses YAML text (for tests and for settings embedded in other files); `file` names it in errors.
-Settings parse_settings(const std::string& text, const std::filesystem::path& file);
+Settings parse_settings(const std::string& text, const std::filesystem::path& file,
+                        const std::vector<SettingOverride>& overrides = {});
 
 // Reads section[key] into value when present, as the type of value; throws InputError
 // "key 'section.key': expected a number, got 'abc'". Leaves value unchanged when absent.

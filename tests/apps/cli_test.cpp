@@ -535,6 +535,46 @@ TEST(CliPipeline, InterruptedRunWritesTheFramesSoFar) {
 
 // eval-objects scores a run folder as the run itself did, refuses a run of another sequence, and
 // compare checks every sequence for object ground truth before its table starts.
+// --set KEY=VALUE changes a setting for one run, over the sequence's settings file, and the run
+// records it; a wrong one stops the run before it starts, naming the --set.
+TEST(CliPipeline, SetOverridesASettingForOneRun) {
+  const fs::path dir = scratch_dir();
+  ASSERT_EQ(wardmap_cli("-q synth --scenario aisle_straight --variant slow --frames 40 --out " + shq(dir / "seq")).code, 0);
+  const auto report_of = [](const fs::path& p) {
+    std::ifstream in(p / "report.json");
+    return nlohmann::json::parse(in);
+  };
+  const std::string run = "-q run " + shq(dir / "seq") + " --mode mono --deterministic";
+  ASSERT_EQ(wardmap_cli(run + " --out " + shq(dir / "flow")).code, 0);
+  const CliResult off = wardmap_cli(run + " --set tracking.flow_extend_mono=false --set ORBextractor.nFeatures=1200 --out " +
+                                    shq(dir / "off"));
+  ASSERT_EQ(off.code, 0) << off.output;
+  // The sequence's settings.yaml leaves the monocular flow on: it runs on the tracked frames.
+  EXPECT_GT(report_of(dir / "flow").at("flow_frames").get<int>(), 10);
+  EXPECT_EQ(report_of(dir / "flow").at("settings_overrides"), nlohmann::json::array());
+  const nlohmann::json r = report_of(dir / "off");
+  EXPECT_EQ(r.at("flow_frames").get<int>(), 0);
+  EXPECT_EQ(r.at("settings_overrides"), nlohmann::json({"tracking.flow_extend_mono=false", "ORBextractor.nFeatures=1200"}));
+  std::ifstream md(dir / "off" / "report.md");
+  const std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("settings.yaml`, with --set tracking.flow_extend_mono=false, ORBextractor.nFeatures=1200"),
+            std::string::npos)
+      << text;
+
+  expect_one_line_error(wardmap_cli(run + " --set tracking.flow_extnd_mono=false"),
+                        "--set tracking.flow_extnd_mono=false: key 'tracking.flow_extnd_mono': not a key of section "
+                        "'tracking' (did you mean 'tracking.flow_extend_mono'?)");
+  expect_one_line_error(wardmap_cli(run + " --set tracking.flow_extend_mono"), "--set: 'tracking.flow_extend_mono': expected KEY=VALUE");
+  // The semantic layer on ground-truth poses without --settings: only its own sections can be set.
+  const std::string gt = "-q run " + shq(dir / "seq") + " --poses gt --no-embedding --no-baseline";
+  ASSERT_EQ(wardmap_cli(gt + " --set semantics.groups.size=3 --out " + shq(dir / "gt")).code, 0);
+  EXPECT_EQ(report_of(dir / "gt").at("settings_overrides"), nlohmann::json({"semantics.groups.size=3"}));
+  expect_one_line_error(wardmap_cli(gt + " --set semantics.groups.size=x"),
+                        "--set semantics.groups.size=x: key 'semantics.groups.size': expected an integer, got 'x'");
+  expect_one_line_error(wardmap_cli(gt + " --set tracking.flow_extend_mono=false"),
+                        "without --settings, only semantics.* and detection.* keys can be set");
+}
+
 // A stretch of a sequence (--first-frame, --frames): its frames keep their timestamps, and the run,
 // eval-objects and compare all score it on the objects seen in that stretch alone.
 TEST(CliObjects, AStretchIsScoredOnItsOwnFrames) {

@@ -150,4 +150,66 @@ TEST(FrontOptions, DottedKeysActAsInTheirSection) {
   EXPECT_THROW(io::parse_settings(std::string(kBase) + "tracking: 3\ntracking.pose_solver: lm\n", "t.yaml"), InputError);
 }
 
+// `wardmap run --set KEY=VALUE`: an override replaces the file's value (nested or dotted), adds a key
+// the file lacks, and sets ORB-SLAM3's dotted keys as the keys they are; the last of a key wins.
+TEST(FrontOptions, CommandLineOverridesReplaceTheFilesKeys) {
+  const std::string file = std::string(kBase) + "ORBextractor.nFeatures: 1000\ntracking:\n  pose_solver: ceres\n" +
+                           "mapping.ba_max_keyframes: 7\n";
+  const std::vector<io::SettingOverride> set = {
+      io::parse_setting_override("tracking.pose_solver=lm"), io::parse_setting_override("mapping.ba_max_keyframes=9"),
+      io::parse_setting_override("mapping.keyframe_culling=false"), io::parse_setting_override("ORBextractor.nFeatures=1500"),
+      io::parse_setting_override("mapping.ba_max_keyframes=11")};
+  const FrontOptions o = load_front_options(io::parse_settings(file, "o.yaml", set));
+  EXPECT_EQ(o.tracking.pose_solver, "lm");
+  EXPECT_EQ(o.mapping.ba_max_keyframes, 11);
+  EXPECT_FALSE(o.mapping.keyframe_culling);
+  EXPECT_EQ(o.orb.n_features, 1500);
+  const FrontOptions plain = load_front_options(io::parse_settings(file, "o.yaml"));
+  EXPECT_EQ(plain.tracking.pose_solver, "ceres");
+  EXPECT_EQ(plain.mapping.ba_max_keyframes, 7);
+  EXPECT_EQ(plain.orb.n_features, 1000);
+}
+
+// A wrong override is reported as the --set that gave it, not as the file.
+TEST(FrontOptions, CommandLineOverrideErrorsNameTheSet) {
+  const auto error_of = [](const std::string& text) {
+    try {
+      const std::vector<io::SettingOverride> set = {io::parse_setting_override(text)};
+      io::blame_overrides(set, [&] { load_front_options(io::parse_settings(kBase, "o.yaml", set)); });
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_EQ(error_of("tracking.pose_solvr=lm"),
+            "--set tracking.pose_solvr=lm: key 'tracking.pose_solvr': not a key of section 'tracking' (did you mean "
+            "'tracking.pose_solver'?)");
+  EXPECT_EQ(error_of("tracking.flow_extend_mono=maybe"),
+            "--set tracking.flow_extend_mono=maybe: key 'tracking.flow_extend_mono': expected true or false, got 'maybe'");
+  EXPECT_EQ(error_of("ORBextractor.nFeatures=-3"),
+            "--set ORBextractor.nFeatures=-3: key 'ORBextractor.nFeatures': must be in [50, 20000], got -3");
+  EXPECT_EQ(error_of("tracking.pose_solver"), "--set: 'tracking.pose_solver': expected KEY=VALUE (e.g. tracking.flow_extend_mono=false)");
+  EXPECT_EQ(error_of("=lm"), "--set: '=lm': the key before '=' is empty");
+  EXPECT_EQ(error_of("tracking.pose_solver="), "--set: 'tracking.pose_solver=': the value after '=' is empty");
+  EXPECT_EQ(error_of("mapping=3"), "--set: 'mapping=3': 'mapping' is a whole section; set its keys one by one (mapping.KEY=VALUE)");
+  try {
+    io::parse_settings(std::string(kBase) + "tracking:\n  pose_solver: lm\n", "o.yaml",
+                       {io::parse_setting_override("tracking.pose_solver.x=1")});
+    FAIL() << "a key under a value was accepted";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "--set: key 'tracking.pose_solver.x': 'tracking.pose_solver' is not a section");
+  }
+  EXPECT_NE(error_of("tracking.pose_solver=[lm").find("--set: 'tracking.pose_solver=[lm': the value is not valid YAML"),
+            std::string::npos);
+  // An error about a key the override did not touch still names the file.
+  try {
+    io::blame_overrides({io::parse_setting_override("tracking.pose_solver=lm")}, [] {
+      load_front_options(io::parse_settings(std::string(kBase) + "tracking:\n  max_lost_seconds: x\n", "o.yaml"));
+    });
+    FAIL() << "a bad value was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "o.yaml") << e.what();
+  }
+}
+
 }  // namespace wardmap::slam
