@@ -95,7 +95,7 @@ void FrontOptions::validate(const std::filesystem::path& file) const {
   check_range(m.ba_max_fixed_keyframes_mono, 0, 1000, "mapping.ba_max_fixed_keyframes_mono", file);
   check_range(m.redundant_ratio, 0.0, 1.0, "mapping.redundant_ratio", file);
   check_range(m.redundant_observers, 1, 100, "mapping.redundant_observers", file);
-  check_range(m.inline_busy_seconds, 0.0, 3600.0, "mapping.inline_busy_seconds", file);
+  check_range(m.min_busy_seconds, 0.0, 3600.0, "mapping.min_busy_seconds", file);
   check_range(m.max_lag_frames, 0, 100000, "mapping.max_lag_frames", file);
   check_range(m.triangulation_neighbours_mono, 0, 100, "mapping.triangulation_neighbours_mono", file);
   check_range(m.recent_min_observations_mono, 1, 100, "mapping.recent_min_observations_mono", file);
@@ -210,7 +210,7 @@ FrontOptions load_front_options(const io::Settings& settings) {
   mk.read("redundant_ratio", p.redundant_ratio);
   mk.read("redundant_observers", p.redundant_observers);
   mk.read("keyframe_culling", p.keyframe_culling);
-  mk.read("inline_busy_seconds", p.inline_busy_seconds);
+  mk.read("min_busy_seconds", p.min_busy_seconds);
   mk.read("max_lag_frames", p.max_lag_frames);
   mk.read("sequence_time_for_mapper", p.sequence_time_for_mapper);
   mk.read("abort_ba_when_behind", p.abort_ba_when_behind);

@@ -137,11 +137,14 @@ struct MappingOptions {
   double redundant_ratio = 0.9;      // mapping.redundant_ratio: keyframe culling
   int redundant_observers = 3;       // mapping.redundant_observers
   bool keyframe_culling = true;      // mapping.keyframe_culling
-  // With the mapper on the tracking thread it is always idle when the tracker asks; it then counts
-  // as busy for this long after each keyframe, in the sequence's time (frame timestamps), as a
-  // mapper thread would be: about its time per keyframe on this machine (median 30-75 ms, p90 up to
-  // 84 ms on 7-Scenes, the synthetic sequences and KITTI). 2 frames at 30 Hz, none at KITTI's 10 Hz.
-  double inline_busy_seconds = 0.08;       // mapping.inline_busy_seconds
+  // The mapper counts as busy for this long after each keyframe, in the sequence's time (frame
+  // timestamps), whether it is or not: about a mapper thread's time per keyframe on this machine
+  // (median 30-75 ms, p90 up to 84 ms on 7-Scenes, the synthetic sequences and KITTI). 2 frames at
+  // 30 Hz, none at KITTI's 10 Hz. On the tracking thread (--deterministic) the mapper is always idle
+  // when the tracker asks; on its own thread it can be done with a young map's keyframe within a
+  // frame, and the next frame's keyframe then has too short a baseline: two threaded monocular runs
+  // (ward quick_5 and slow_5) lost their scale in the first second so (113-122 cm ATE).
+  double min_busy_seconds = 0.08;          // mapping.min_busy_seconds
   // Threaded: the tracker waits for the mapper when a keyframe is still being mapped this many frames
   // after it was made (offline input arrives faster than a camera's; the map must keep up).
   int max_lag_frames = 3;                  // mapping.max_lag_frames

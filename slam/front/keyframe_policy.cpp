@@ -7,7 +7,7 @@ bool need_new_keyframe(const KeyFrameEvidence& e, const TrackingOptions& o) {
   const double ref_ratio = e.keyframes_in_map < 2 ? 0.4 : o.keyframe_ref_ratio;
   const bool need_close = e.tracked_close < o.keyframe_close_tracked && e.untracked_close > o.keyframe_close_untracked;
   const bool too_long = e.frames_since_keyframe >= o.keyframe_max_frames;
-  const bool accepts = e.mapper_idle ||
+  const bool accepts = (e.mapper_idle && !e.keyframe_too_recent) ||
                        (!e.mapper_keyframes_waiting && e.deferred_gap_seconds > o.keyframe_max_gap_seconds);
   const bool weak = e.tracked_inliers < 0.25 * e.reference_points || need_close;
   const bool fewer_than_reference =

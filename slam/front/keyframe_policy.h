@@ -2,6 +2,7 @@
 // the frame tracks clearly fewer points than its reference keyframe holds, or when too few close
 // points are tracked while many close keypoints are unmatched; and always after keyframe_max_frames.
 // A busy mapper takes one only when tracking is weak or deferring it would leave too long a gap.
+// The mapper counts as busy for mapping.min_busy_seconds after each keyframe, idle or not.
 #pragma once
 
 #include "slam/front/front_options.h"
@@ -16,6 +17,9 @@ struct KeyFrameEvidence {
   int tracked_close = 0;    // close keypoints with a matched point
   int untracked_close = 0;  // close keypoints without one
   bool mapper_idle = true;
+  // The last keyframe is younger than mapping.min_busy_seconds (sequence time): the mapper counts
+  // as busy even if it is idle, as a mapper taking its usual time per keyframe would be.
+  bool keyframe_too_recent = false;
   bool mapper_queue_full = false;  // then no keyframe: the queue must not grow without bound
   bool mapper_keyframes_waiting = false;  // keyframes queued, not yet taken by the mapper
   // Seconds from the last keyframe to the next frame (this frame's period ahead): the gap a keyframe

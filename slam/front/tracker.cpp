@@ -508,8 +508,8 @@ KeyFrameEvidence Tracker::evidence(const Frame& frame, int inliers) const {
     else
       ++e.untracked_close;
   }
-  e.mapper_idle = mapper_.idle() && (mapper_.threaded() || frame.timestamp() - last_keyframe_time_ >=
-                                                               options_.mapping.inline_busy_seconds);
+  e.mapper_idle = mapper_.idle();
+  e.keyframe_too_recent = frame.timestamp() - last_keyframe_time_ < options_.mapping.min_busy_seconds;
   e.mapper_queue_full = mapper_.queue_full();
   e.mapper_keyframes_waiting = mapper_.queued() > 0;
   const double period = last_frame_ ? frame.timestamp() - last_frame_->timestamp() : 0.0;

@@ -25,7 +25,7 @@ const char* kBase =
 TEST(FrontOptions, TrackingAndMappingSectionsOverrideDefaults) {
   const std::string text = std::string(kBase) +
                            "ORBextractor.nFeatures: 1500\ntracking:\n  short_term_seconds: 1.5\n  match_th_low: 40\n"
-                           "  pose_solver: lm\nmapping:\n  ba_max_keyframes: 7\n  keyframe_culling: false\n  inline_busy_seconds: 0.05\n  min_parallax_deg_mono: 2.5\n"
+                           "  pose_solver: lm\nmapping:\n  ba_max_keyframes: 7\n  keyframe_culling: false\n  min_busy_seconds: 0.05\n  min_parallax_deg_mono: 2.5\n"
                            "  sequence_time_for_mapper: false\n  abort_ba_when_behind: false\n  ba_max_keyframes_mono: 15\n";
   const FrontOptions o = load_front_options(io::parse_settings(text, "t.yaml"));
   EXPECT_EQ(o.orb.n_features, 1500);
@@ -36,7 +36,7 @@ TEST(FrontOptions, TrackingAndMappingSectionsOverrideDefaults) {
   EXPECT_EQ(load_front_options(io::parse_settings(std::string(kBase) + "tracking:\ntracking.pose_solver: lm\n", "e.yaml"))
                 .tracking.pose_solver,
             "lm");
-  EXPECT_DOUBLE_EQ(o.mapping.inline_busy_seconds, 0.05);
+  EXPECT_DOUBLE_EQ(o.mapping.min_busy_seconds, 0.05);
   EXPECT_DOUBLE_EQ(o.mapping.min_parallax_deg_mono, 2.5);
   EXPECT_FALSE(o.mapping.sequence_time_for_mapper);
   EXPECT_TRUE(FrontOptions{}.mapping.sequence_time_for_mapper);
@@ -99,7 +99,7 @@ TEST(FrontOptions, InvalidValuesNameTheKey) {
   expect_error("tracking:\n  flow_budget_ms_mono: -1\n", "tracking.flow_budget_ms_mono");
   expect_error("tracking:\n  flow_budget_frames: 0\n", "tracking.flow_budget_frames");
   expect_error("mapping:\n  redundant_ratio: 1.5\n", "mapping.redundant_ratio");
-  expect_error("mapping:\n  inline_busy_seconds: -0.1\n", "mapping.inline_busy_seconds");
+  expect_error("mapping:\n  min_busy_seconds: -0.1\n", "mapping.min_busy_seconds");
   expect_error("mapping:\n  min_parallax_deg_mono: 95\n", "mapping.min_parallax_deg_mono");
   expect_error("mapping:\n  ba_max_keyframes_mono: 0\n", "mapping.ba_max_keyframes_mono");
 }

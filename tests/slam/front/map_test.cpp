@@ -249,6 +249,24 @@ TEST(KeyFramePolicy, BusyMapperTakesAKeyframeOnlyWhenDeferringItLeavesTooLongAGa
   EXPECT_FALSE(need_new_keyframe(e, o));
 }
 
+// An idle mapper counts as busy while the last keyframe is younger than mapping.min_busy_seconds:
+// a mapper thread done at once with a young map's keyframe must not get the very next frame too.
+TEST(KeyFramePolicy, IdleMapperCountsAsBusyRightAfterAKeyframe) {
+  TrackingOptions o;
+  KeyFrameEvidence e;
+  e.keyframes_in_map = 2;
+  e.reference_points = 400;
+  e.tracked_inliers = 250;  // < 0.75 x 400, not weak (> 0.25 x 400)
+  e.frames_since_keyframe = 1;
+  e.mapper_idle = true;
+  e.deferred_gap_seconds = 2.0 / 30;
+  EXPECT_TRUE(need_new_keyframe(e, o));
+  e.keyframe_too_recent = true;
+  EXPECT_FALSE(need_new_keyframe(e, o));
+  e.tracked_inliers = 50;  // weak tracking takes a keyframe all the same
+  EXPECT_TRUE(need_new_keyframe(e, o));
+}
+
 TEST(BoundedQueue, RefusesWhenFullAndDrainsInOrder) {
   BoundedQueue<int> q(2);
   EXPECT_TRUE(q.try_push(1));
