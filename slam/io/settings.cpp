@@ -69,6 +69,55 @@ void reject_repeated_keys(const YAML::Node& node, const std::string& path, const
 // The sections wardmap reads beside ORB-SLAM3's keys.
 const char* const kSections[] = {"tracking", "mapping", "semantics", "detection"};
 
+// The top-level keys wardmap reads (ORB-SLAM3's): parse_settings's camera keys, then
+// load_front_options's ORBextractor and Stereo keys. A settings file may hold others (ORB-SLAM3's
+// viewer, IMU...), which are ignored; a --set of one would change nothing, so it is refused.
+const char* const kTopLevelKeys[] = {
+    "Camera.type", "Camera1.fx", "Camera1.fy", "Camera1.cx", "Camera1.cy", "Camera1.k1", "Camera1.k2", "Camera1.p1",
+    "Camera1.p2", "Camera1.k3", "Camera.fx", "Camera.fy", "Camera.cx", "Camera.cy", "Camera.k1", "Camera.k2",
+    "Camera.p1", "Camera.p2", "Camera.k3", "Camera.width", "Camera.height", "Camera.fps", "Camera.RGB",
+    "RGBD.DepthMapFactor", "DepthMapFactor", "ORBextractor.nFeatures", "ORBextractor.scaleFactor",
+    "ORBextractor.nLevels", "ORBextractor.iniThFAST", "ORBextractor.minThFAST", "Stereo.b", "Stereo.ThDepth"};
+
+// Keys read under two names, the first taken when a file has both (ORB-SLAM3's Camera1.fx over
+// ORB-SLAM2's Camera.fx).
+const std::pair<const char*, const char*> kAliases[] = {
+    {"Camera1.fx", "Camera.fx"}, {"Camera1.fy", "Camera.fy"}, {"Camera1.cx", "Camera.cx"},
+    {"Camera1.cy", "Camera.cy"}, {"Camera1.k1", "Camera.k1"}, {"Camera1.k2", "Camera.k2"},
+    {"Camera1.p1", "Camera.p1"}, {"Camera1.p2", "Camera.p2"}, {"Camera1.k3", "Camera.k3"},
+    {"RGBD.DepthMapFactor", "DepthMapFactor"}};
+
+// Edit distance, for the suggestion in an unknown key's message.
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// The known key closest to `key` within a third of its length (at least 3 edits), else "".
+template <class Keys>
+std::string closest_key(const std::string& key, const Keys& known) {
+  std::string best;
+  size_t best_distance = std::max<size_t>(3, key.size() / 3) + 1;
+  for (const auto& k : known) {
+    const size_t d = edit_distance(key, k);
+    if (d < best_distance) {
+      best_distance = d;
+      best = k;
+    }
+  }
+  return best;
+}
+
 std::vector<std::string> split_dotted(const std::string& key) {
   std::vector<std::string> parts;
   for (size_t start = 0;;) {
@@ -150,6 +199,16 @@ SettingOverride parse_setting_override(const std::string& text) {
     if (o.key == section)
       throw InputError("--set", "'" + text + "': '" + o.key + "' is a whole section; set its keys one by one (" + o.key +
                                     ".KEY=VALUE)");
+  if (!in_a_section(o.key) &&
+      std::find_if(std::begin(kTopLevelKeys), std::end(kTopLevelKeys), [&](const char* k) { return o.key == k; }) ==
+          std::end(kTopLevelKeys)) {
+    std::vector<std::string> known(std::begin(kTopLevelKeys), std::end(kTopLevelKeys));
+    for (const char* section : kSections) known.push_back(std::string(section) + ".");
+    const std::string best = closest_key(o.key, known);
+    throw InputError("--set", "'" + text + "': '" + o.key + "' is not a key wardmap reads" +
+                                  (best.empty() ? std::string() : " (did you mean '" + best + "'?)") +
+                                  "; its own keys are tracking.*, mapping.*, semantics.* and detection.*");
+  }
   return o;
 }
 
@@ -161,10 +220,15 @@ void apply_setting_overrides(YAML::Node& root, const std::vector<SettingOverride
     } catch (const YAML::ParserException& ex) {
       throw InputError("--set", "'" + o.key + "=" + o.value + "': the value is not valid YAML: " + ex.msg);
     }
-    if (in_a_section(o.key))
+    if (in_a_section(o.key)) {
       set_dotted(root, o.key, value, true, "--set", 0);
-    else
-      root[o.key] = value;  // an ORB-SLAM3 key ("ORBextractor.nFeatures", "Camera1.fx"): dots are part of it
+      continue;
+    }
+    for (const auto& [preferred, other] : kAliases)  // the file's preferred name would hide this one
+      if (o.key == other && static_cast<const YAML::Node&>(root)[preferred])
+        throw InputError("--set", "'" + o.key + "=" + o.value + "': the settings file writes this key as '" + preferred +
+                                      "', which is read first; set that one");
+    root[o.key] = value;  // an ORB-SLAM3 key ("ORBextractor.nFeatures", "Camera1.fx"): dots are part of it
   }
 }
 
@@ -287,24 +351,6 @@ std::string suggest_settings_name(const std::string& kind, const fs::path& root,
 SectionKeys::SectionKeys(YAML::Node section, std::string name, fs::path file)
     : section_(std::move(section)), name_(std::move(name)), file_(std::move(file)) {}
 
-namespace {
-// Edit distance, for the suggestion in an unknown key's message.
-size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diagonal = row[0];
-    row[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-}  // namespace
-
 void SectionKeys::reject_unknown() const {
   if (!section_ || section_.IsNull()) return;  // absent, or written empty ("tracking:")
   if (!section_.IsMap())
@@ -313,15 +359,7 @@ void SectionKeys::reject_unknown() const {
   for (const auto& kv : section_) {
     const std::string key = kv.first.Scalar();
     if (std::find(known_.begin(), known_.end(), key) != known_.end()) continue;
-    std::string best;
-    size_t best_distance = std::max<size_t>(3, key.size() / 3) + 1;
-    for (const std::string& k : known_) {
-      const size_t d = edit_distance(key, k);
-      if (d < best_distance) {
-        best_distance = d;
-        best = k;
-      }
-    }
+    const std::string best = closest_key(key, known_);
     std::string message = "key '" + full(name_, key) + "': " +
                           (name_.empty() ? std::string("not a known key") : "not a key of section '" + name_ + "'");
     if (!best.empty()) message += " (did you mean '" + full(name_, best) + "'?)";

@@ -201,6 +201,22 @@ TEST(FrontOptions, CommandLineOverrideErrorsNameTheSet) {
   }
   EXPECT_NE(error_of("tracking.pose_solver=[lm").find("--set: 'tracking.pose_solver=[lm': the value is not valid YAML"),
             std::string::npos);
+  // A top-level key nothing reads would change nothing: refused, with the nearest one read.
+  EXPECT_EQ(error_of("ORBextractor.nFeature=1500"),
+            "--set: 'ORBextractor.nFeature=1500': 'ORBextractor.nFeature' is not a key wardmap reads (did you mean "
+            "'ORBextractor.nFeatures'?); its own keys are tracking.*, mapping.*, semantics.* and detection.*");
+  EXPECT_EQ(error_of("Viewer.KeyFrameSize=0.05").find("--set: 'Viewer.KeyFrameSize=0.05': 'Viewer.KeyFrameSize' is "
+                                                       "not a key wardmap reads"),
+            0u);
+  EXPECT_EQ(error_of("Camera1.fx=400"), "(no error)");
+  EXPECT_EQ(error_of("Stereo.ThDepth=40"), "(no error)");
+  // ORB-SLAM2's name of a key the file writes under ORB-SLAM3's would be read second, so unused.
+  EXPECT_EQ(error_of("Camera.fx=400"),
+            "--set: 'Camera.fx=400': the settings file writes this key as 'Camera1.fx', which is read first; set that one");
+  EXPECT_DOUBLE_EQ(io::parse_settings(std::string(kBase) + "DepthMapFactor: 1000\n", "d.yaml",
+                                      {io::parse_setting_override("DepthMapFactor=5000")})
+                       .camera.depth_map_factor.value_or(0),
+                   5000);
   // An error about a key the override did not touch still names the file.
   try {
     io::blame_overrides({io::parse_setting_override("tracking.pose_solver=lm")}, [] {
