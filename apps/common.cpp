@@ -37,6 +37,22 @@ nlohmann::json scale_drift_json(const slam::eval::ScaleDriftResult& drift) {
   return j;
 }
 
+void add_set_option(CLI::App* cmd, std::vector<std::string>& texts, const std::string& use) {
+  cmd->add_option("--set", texts,
+                  "KEY=VALUE: a setting over the settings file's (repeat for more), its key as the file writes it:\n"
+                  "dotted in wardmap's sections (--set tracking.flow_extend_mono=false --set semantics.groups.size=6)\n"
+                  "or ORB-SLAM3's (--set ORBextractor.nFeatures=1500); the value is YAML and is checked as the\n"
+                  "file's would be. " + use)
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
+std::vector<slam::io::SettingOverride> parse_set_options(const std::vector<std::string>& texts) {
+  std::vector<slam::io::SettingOverride> overrides;
+  for (const std::string& text : texts) overrides.push_back(slam::io::parse_setting_override(text));
+  return overrides;
+}
+
 nlohmann::json overrides_json(const std::vector<slam::io::SettingOverride>& overrides) {
   nlohmann::json j = nlohmann::json::array();
   for (const auto& o : overrides) j.push_back(o.key + "=" + o.value);

@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "slam/eval/trajectory_eval.h"
 #include "slam/io/sequence.h"
@@ -25,6 +26,11 @@ slam::io::ReaderOptions reader_options(const ReaderArgs& args);
 
 // The scale drift as report.json and `wardmap eval --json` write it: null figures when not valid.
 nlohmann::json scale_drift_json(const slam::eval::ScaleDriftResult& drift);
+
+// --set KEY=VALUE, repeatable, into `texts`; `use` ends its help (what the command does with it).
+void add_set_option(CLI::App* cmd, std::vector<std::string>& texts, const std::string& use);
+// The --set texts parsed (slam::io::parse_setting_override), in order.
+std::vector<slam::io::SettingOverride> parse_set_options(const std::vector<std::string>& texts);
 
 // The --set overrides of a run, for report.json ("KEY=VALUE" strings, in order) and report.md
 // (", with --set KEY=VALUE, ..." after the settings file's name; empty without overrides).

@@ -24,7 +24,7 @@ struct SlamJob {
   // thread has the time it would have live (offline input otherwise arrives 3-8x faster). Threaded only.
   bool realtime = false;
   slam::io::ReaderOptions reader{};  // --format, --first-frame, --frames, ...
-  std::vector<slam::io::SettingOverride> settings_overrides;  // --set KEY=VALUE, over the settings file's keys
+  std::vector<slam::io::SettingOverride> settings_overrides{};  // --set KEY=VALUE, over the settings file's keys
 };
 
 // The place-recognition vocabulary: `given`, else $WARDMAP_VOCABULARY, else the project's shipped one;

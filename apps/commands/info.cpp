@@ -8,7 +8,11 @@
 
 #include "apps/commands/commands.h"
 #include "apps/common.h"
+#include "apps/slam_job.h"
+#include "semantics/detection/detector_options.h"
+#include "semantics/options.h"
 #include "slam/core/errors.h"
+#include "slam/front/front_options.h"
 #include "slam/io/sequence.h"
 #include "slam/io/settings.h"
 #include "slam/io/text_file.h"
@@ -21,22 +25,45 @@ namespace {
 
 struct InfoArgs {
   std::string path, settings, json;
+  std::vector<std::string> set;  // --set KEY=VALUE
   ReaderArgs reader;
 };
+
+// A settings file read as `wardmap run` reads it: the camera, the front-process's keys and the
+// semantics and detection sections, each validated (an error names the file or the --set).
+slam::io::Settings check_settings(const fs::path& file, const std::vector<slam::io::SettingOverride>& overrides) {
+  slam::io::Settings settings;
+  slam::io::blame_overrides(overrides, [&] {
+    settings = slam::io::load_settings(file, overrides);
+    slam::load_front_options(settings);
+    semantics::load_semantic_options(settings.section("semantics"), file);
+    semantics::detector_options_from_yaml(settings.section("detection"), file);
+  });
+  return settings;
+}
 
 void run_info(const InfoArgs& a) {
   const auto reader = slam::io::open_sequence(a.path, reader_options(a.reader));
   const auto& in = reader->info();
   const std::string suggestion = slam::io::suggest_settings_name(slam::io::to_string(in.kind), in.root, in.width);
 
+  // --set alone is checked against the file a SLAM run would read.
+  const auto overrides = parse_set_options(a.set);
+  fs::path settings_file = a.settings;
+  if (settings_file.empty() && !overrides.empty()) {
+    settings_file = default_settings(in);
+    if (settings_file.empty())
+      throw InputError("--set", "no settings file to set it in: the sequence has no settings.yaml and no shipped one "
+                                "fits; give --settings");
+  }
   std::optional<slam::io::Settings> settings;
-  if (!a.settings.empty()) {
-    settings = slam::io::load_settings(a.settings);
+  if (!settings_file.empty()) {
+    settings = check_settings(settings_file, overrides);
     const auto& c = settings->camera.camera;
     if (c.width != in.width || c.height != in.height)
-      throw InputError(a.settings, "Camera.width/height " + std::to_string(c.width) + "x" + std::to_string(c.height) +
-                                       " do not match the sequence's images " + std::to_string(in.width) + "x" +
-                                       std::to_string(in.height));
+      throw InputError(settings_file.string(), "Camera.width/height " + std::to_string(c.width) + "x" +
+                                                   std::to_string(c.height) + " do not match the sequence's images " +
+                                                   std::to_string(in.width) + "x" + std::to_string(in.height));
   }
 
   std::string calib;
@@ -46,7 +73,7 @@ void run_info(const InfoArgs& a) {
                   in.calibration->cx, in.calibration->cy, in.calibration_source.c_str());
     calib = buf;
   } else if (settings) {
-    calib = "from " + a.settings;
+    calib = "from " + settings_file.string();
   } else {
     calib = "none in the dataset";
     if (!suggestion.empty()) calib += "; shipped settings: data/settings/" + suggestion;
@@ -68,6 +95,9 @@ void run_info(const InfoArgs& a) {
                 reader->ground_truth().size());
   else std::printf("ground truth:  no\n");
   if (!in.notes.empty()) std::printf("notes:         %s\n", in.notes.c_str());
+  if (settings)
+    std::printf("settings:      %s%s: valid (camera, tracking, mapping, semantics, detection)\n",
+                settings_file.c_str(), overrides_text(overrides).c_str());
 
   if (!a.json.empty()) {
     nlohmann::json j = {{"kind", slam::io::to_string(in.kind)}, {"path", in.root.string()}, {"frames", in.frame_count},
@@ -75,6 +105,10 @@ void run_info(const InfoArgs& a) {
                         {"depth", in.has_depth}, {"ground_truth", in.has_ground_truth},
                         {"frames_with_ground_truth", in.frames_with_ground_truth}, {"calibration", calib},
                         {"suggested_settings", suggestion}};
+    if (settings) {
+      j["settings"] = settings_file.string();
+      j["settings_overrides"] = overrides_json(overrides);
+    }
     slam::io::write_file_atomic(a.json, j.dump(2) + "\n");
   }
 }
@@ -86,7 +120,12 @@ void add_info_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("info", "Describe a sequence: kind, frames, duration, resolution, calibration, depth, ground truth");
   cmd->add_option("dataset", args->path, "Sequence folder (TUM RGB-D, KITTI, EuRoC, 7-Scenes, images) or video file")->required();
   add_reader_options(cmd, args->reader);
-  cmd->add_option("--settings", args->settings, "Also load and validate this settings YAML against the sequence");
+  cmd->add_option("--settings", args->settings,
+                  "Also read this settings YAML as `wardmap run` would, and validate it against the sequence: the\n"
+                  "camera (its size against the images'), and the tracking, mapping, semantics and detection keys");
+  add_set_option(cmd, args->set,
+                 "Checked with the rest; without --settings, over the file a SLAM run would read (the sequence's\n"
+                 "settings.yaml, else the shipped one for its dataset)");
   cmd->add_option("--json", args->json, "Also write the description as JSON to this file");
   cmd->callback([args] { run_info(*args); });
 }

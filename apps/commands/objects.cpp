@@ -116,17 +116,14 @@ struct CompareArgs {
   SemanticJob job;
   ReaderArgs reader;
   std::string json;
+  std::vector<std::string> set;  // --set KEY=VALUE
 };
 
 void compare(CompareArgs& a) {
   a.job.reader = reader_options(a.reader);
+  a.job.settings_overrides = parse_set_options(a.set);
   for (const auto& s : a.sequences) require_object_ground_truth(s);  // before the table starts
-  json rows = json::array();
-  std::printf("%-28s | %-12s | %9s | %7s | %9s | %8s | %8s | %7s\n", "sequence", "association", "accuracy", "objects",
-              "Object_GT", "pos.err", "max err", "ID sw.");
-  std::printf("%s\n", std::string(110, '-').c_str());
-  for (const auto& s : a.sequences) {
-    const std::string name = folder_name(s);
+  const auto job_for = [&](const std::string& s) {
     // Measured once, associated both ways: the baseline's figures are those of a separate
     // --association hdp-only run (same measurements, same sampler seed).
     SemanticJob job = a.job;
@@ -135,7 +132,21 @@ void compare(CompareArgs& a) {
     job.baseline = true;
     job.out.clear();
     job.progress = false;
+    return job;
+  };
+  // The settings, --set and the detector are checked before the table starts too: on the first
+  // sequence's set-up, which its run then uses.
+  std::unique_ptr<SemanticSetup> first_setup = prepare_semantic_job(job_for(a.sequences.front()));
+  json rows = json::array();
+  std::printf("%-28s | %-12s | %9s | %7s | %9s | %8s | %8s | %7s\n", "sequence", "association", "accuracy", "objects",
+              "Object_GT", "pos.err", "max err", "ID sw.");
+  std::printf("%s\n", std::string(110, '-').c_str());
+  for (const auto& s : a.sequences) {
+    const std::string name = folder_name(s);
+    SemanticJob job = job_for(s);
+    if (first_setup) job.setup = first_setup.get();
     const SemanticRun r = run_semantic_job(job);
+    first_setup.reset();
     if (!r.evaluation || !r.baseline_evaluation)
       throw InputError(s, "no object ground truth (objects.json + annotations.jsonl): use a wardmap synth sequence");
     for (const auto& [mode, e] : {std::pair{"hdp-only", &*r.baseline_evaluation}, std::pair{"hierarchical", &*r.evaluation}}) {
@@ -178,6 +189,7 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("sequences", a->sequences, "Synthetic sequences (wardmap synth outputs)")->required();
   cmd->add_option("--json", a->json, "Also write the table as JSON");
   add_semantic_options(cmd, a->job);
+  add_set_option(cmd, a->set, "The same for every sequence; without --settings, semantics.* and detection.* only");
   add_reader_options(cmd, a->reader);
   cmd->callback([a] { compare(*a); });
 }

@@ -30,7 +30,7 @@ struct RunArgs {
 
 void run(RunArgs& a) {
   a.job.reader = reader_options(a.reader);
-  for (const std::string& text : a.set) a.job.settings_overrides.push_back(slam::io::parse_setting_override(text));
+  a.job.settings_overrides = parse_set_options(a.set);
   // Checked before the run, not when its outputs are written at the end.
   if (!a.job.out.empty()) slam::io::check_output_folder(a.job.out, "--out");
   if (a.poses == "slam") {
@@ -105,13 +105,7 @@ void add_run_command(CLI::App& app) {
                 "frames are read as fast as they are tracked, and the tracker gives a busy mapper the\n"
                 "sequence time since the last keyframe (mapping.sequence_time_for_mapper)")
       ->excludes("--deterministic");
-  cmd->add_option("--set", a->set,
-                  "KEY=VALUE: a setting over the settings file's (repeat for more), its key as the file writes it:\n"
-                  "dotted in wardmap's sections (--set tracking.flow_extend_mono=false --set semantics.groups.size=6)\n"
-                  "or ORB-SLAM3's (--set ORBextractor.nFeatures=1500); the value is YAML and is checked as the\n"
-                  "file's would be. Recorded in report.json (settings_overrides)")
-      ->expected(1)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  add_set_option(cmd, a->set, "Recorded in report.json (settings_overrides)");
   add_semantic_options(cmd, a->job);
   add_baseline_option(cmd, a->job);
   add_reader_options(cmd, a->reader);

@@ -144,6 +144,49 @@ TEST(CliBadInput, WrongCalibrationSize) {
       "do not match the sequence's images 64x48");
 }
 
+// `wardmap info --settings` reads a settings file as `wardmap run` would: a key of the tracking,
+// semantics or detection sections that run refuses is refused here too, and --set is checked with
+// the rest (without --settings, over the sequence's own settings.yaml).
+TEST(CliInfo, SettingsAreCheckedAsRunReadsThem) {
+  const fs::path root = scratch_dir();
+  make_seven_scenes(root / "seq");
+  const fs::path settings = root / "s.yaml";
+  const std::string info = "info " + shq(root / "seq") + " --settings " + shq(settings);
+  write_fixture_settings(settings, "tracking:\n  flow_extnd_mono: false\n");
+  expect_one_line_error(wardmap_cli(info), "s.yaml:11: key 'tracking.flow_extnd_mono': not a key of section 'tracking'");
+  write_fixture_settings(settings, "semantics.groups.size: -3\n");
+  expect_one_line_error(wardmap_cli(info), "s.yaml: key 'semantics.groups.size': must be in");
+  write_fixture_settings(settings, "detection:\n  score_treshold: 0.3\n");
+  expect_one_line_error(wardmap_cli(info), "key 'detection.score_treshold'");
+
+  write_fixture_settings(settings, "tracking:\n  flow_extend_mono: true\n");
+  CliResult r = wardmap_cli(info + " --json " + shq(root / "info.json"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("s.yaml: valid (camera, tracking, mapping, semantics, detection)"), std::string::npos)
+      << r.output;
+  r = wardmap_cli(info + " --set tracking.flow_extend_mono=false --json " + shq(root / "info.json"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("s.yaml, with --set tracking.flow_extend_mono=false: valid"), std::string::npos) << r.output;
+  std::ifstream in(root / "info.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(fs::path(j.at("settings").get<std::string>()).filename(), "s.yaml");
+  EXPECT_EQ(j.at("settings_overrides"), nlohmann::json::array({"tracking.flow_extend_mono=false"}));
+  expect_one_line_error(wardmap_cli(info + " --set tracking.flow_extend_mono=maybe"),
+                        "--set tracking.flow_extend_mono=maybe: key 'tracking.flow_extend_mono': expected true or false");
+  expect_one_line_error(wardmap_cli(info + " --set Camera.fx=40"), "writes this key as 'Camera1.fx'");
+  expect_one_line_error(wardmap_cli(info + " --set foo=1"), "'foo' is not a key wardmap reads");
+
+  // --set alone: over the sequence's settings.yaml, as a SLAM run would read it.
+  write_fixture_settings(root / "seq" / "settings.yaml", "mapping:\n  keyframe_culling: true\n");
+  r = wardmap_cli("info " + shq(root / "seq") + " --set mapping.keyframe_culling=false");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("settings.yaml, with --set mapping.keyframe_culling=false: valid"), std::string::npos)
+      << r.output;
+  expect_one_line_error(wardmap_cli("info " + shq(root / "seq") + " --set mapping.keyframe_culing=false"),
+                        "--set mapping.keyframe_culing=false: key 'mapping.keyframe_culing': not a key of section "
+                        "'mapping' (did you mean 'mapping.keyframe_culling'?)");
+}
+
 TEST(CliBadInput, UnknownLayout) {
   const fs::path root = scratch_dir();
   write_text(root / "notes.txt", "nothing here");
@@ -694,6 +737,20 @@ TEST(CliObjects, EvalObjectsAndCompare) {
   EXPECT_EQ(rows[0].at("accuracy"), hdp_report.at("objects").at("association_accuracy"));
   EXPECT_EQ(rows[0].at("landmarks"), hdp_report.at("objects").at("landmarks"));
   EXPECT_EQ(rows[0].at("position_error_mean"), hdp_report.at("objects").at("position_error_mean"));
+
+  // --set, as with run: a landmark needing more measurements than any object has leaves none.
+  const CliResult none = wardmap_cli("-q compare " + shq(dir / "ward") +
+                                     " --no-embedding --set semantics.association.min_measurements=10000"
+                                     " --set semantics.association.border_min_measurements=10000 --json " +
+                                     shq(dir / "none.json"));
+  ASSERT_EQ(none.code, 0) << none.output;
+  std::ifstream none_in(dir / "none.json");
+  const nlohmann::json none_rows = nlohmann::json::parse(none_in);
+  ASSERT_EQ(none_rows.size(), 2u);
+  EXPECT_EQ(none_rows[1].at("landmarks"), 0);
+  expect_one_line_error(
+      wardmap_cli("-q compare " + shq(dir / "ward") + " --no-embedding --set semantics.association.min_measurement=1"),
+      "--set semantics.association.min_measurement=1: key 'semantics.association.min_measurement'");
 }
 
 }  // namespace
