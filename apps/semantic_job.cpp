@@ -122,10 +122,8 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
   else if (info.calibration) camera = *info.calibration;
   else
     throw InputError(job.sequence.string(), "no calibration: the dataset carries none; give --settings (see data/settings/)");
-  if (camera.width != info.width || camera.height != info.height)
-    throw InputError(settings ? job.settings.string() : info.calibration_source,
-                     "calibration is for " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
-                         " images, the sequence's are " + std::to_string(info.width) + "x" + std::to_string(info.height));
+  slam::io::check_calibration_size(camera, info.width, info.height,
+                                   settings ? job.settings.string() : info.calibration_source, job.settings_overrides);
 
   semantics::SemanticOptions& options = setup->options;
   semantics::DetectorOptions det;

@@ -127,10 +127,7 @@ double run_slam_job(const SlamJob& job) {
   if (job.realtime && job.deterministic)
     throw InputError("--realtime", "paces the input for the mapper thread, which --deterministic does not run");
   const auto& cam = settings.camera.camera;
-  if (cam.width != info.width || cam.height != info.height)
-    throw InputError(settings_file.string(), "calibration is for " + std::to_string(cam.width) + "x" +
-                                                 std::to_string(cam.height) + " images, the sequence's are " +
-                                                 std::to_string(info.width) + "x" + std::to_string(info.height));
+  slam::io::check_calibration_size(cam, info.width, info.height, settings_file.string(), job.settings_overrides);
 
   slam::FrontProcess front(options, cam);
   const fs::path vocabulary_file = find_vocabulary(job.vocabulary);

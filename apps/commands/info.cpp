@@ -60,10 +60,7 @@ void run_info(const InfoArgs& a) {
   if (!settings_file.empty()) {
     settings = check_settings(settings_file, overrides);
     const auto& c = settings->camera.camera;
-    if (c.width != in.width || c.height != in.height)
-      throw InputError(settings_file.string(), "Camera.width/height " + std::to_string(c.width) + "x" +
-                                                   std::to_string(c.height) + " do not match the sequence's images " +
-                                                   std::to_string(in.width) + "x" + std::to_string(in.height));
+    slam::io::check_calibration_size(c, in.width, in.height, settings_file.string(), overrides);
   }
 
   std::string calib;

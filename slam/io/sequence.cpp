@@ -75,10 +75,7 @@ Frame SequenceReader::read(size_t i) {
 }
 
 void SequenceReader::set_calibration(const PinholeCamera& camera, const std::string& source) {
-  if (camera.width != info_.width || camera.height != info_.height)
-    throw InputError(source, "Camera.width/height " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
-                                 " do not match the sequence's images " + std::to_string(info_.width) + "x" +
-                                 std::to_string(info_.height));
+  check_calibration_size(camera, info_.width, info_.height, source);
   info_.calibration = camera;
   info_.calibration_source = source;
 }

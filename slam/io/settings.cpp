@@ -39,11 +39,30 @@ bool read_key(const YAML::Node& root, const std::string& key, T& out, const fs::
   return true;
 }
 
-double required_number(const YAML::Node& root, std::initializer_list<const char*> keys, const fs::path& file) {
+// The first of `keys` present; `used` is set to its name.
+double required_number(const YAML::Node& root, std::initializer_list<const char*> keys, const fs::path& file,
+                       std::string& used) {
   double v = 0;
   for (const char* k : keys)
-    if (read_key(root, k, v, file, "a number")) return v;
+    if (read_key(root, k, v, file, "a number")) {
+      used = k;
+      return v;
+    }
   throw InputError(file.string(), std::string("missing key '") + *keys.begin() + "' (camera calibration)");
+}
+
+// A calibration the camera model refuses, reported at the key that holds the wrong value (so that
+// a --set override is blamed for its own value, and a file's line is given).
+[[noreturn]] void throw_calibration_error(const YAML::Node& root, const PinholeCamera& camera, const std::string& error,
+                                          const std::map<std::string, std::string>& keys, const fs::path& file) {
+  std::string key;
+  if (error.rfind("image size", 0) == 0)
+    key = camera.width <= 0 ? "Camera.width" : "Camera.height";
+  else if (error.rfind("distortion", 0) != 0)
+    key = keys.at(error.substr(0, 2));  // "fx", "fy", "cx", "cy"
+  if (key.empty()) throw InputError(file.string(), "camera calibration: " + error);
+  const YAML::Node n = root[key];
+  throw InputError(file.string(), "key '" + key + "': camera calibration: " + error, n ? n.Mark().line + 1 : 0);
 }
 
 // yaml-cpp keeps the first of two equal keys of a mapping and silently ignores the other: a second
@@ -246,6 +265,18 @@ void blame_overrides(const std::vector<SettingOverride>& overrides, const std::f
   }
 }
 
+void check_calibration_size(const PinholeCamera& camera, int width, int height, const std::string& source,
+                            const std::vector<SettingOverride>& overrides) {
+  if (camera.width == width && camera.height == height) return;
+  std::string blamed = source;
+  for (const SettingOverride& o : overrides)
+    if ((o.key == "Camera.width" && camera.width != width) || (o.key == "Camera.height" && camera.height != height))
+      blamed = "--set " + o.key + "=" + o.value;
+  throw InputError(blamed, "Camera.width/height " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
+                               " do not match the sequence's images " + std::to_string(width) + "x" +
+                               std::to_string(height));
+}
+
 Settings parse_settings(const std::string& text, const fs::path& file, const std::vector<SettingOverride>& overrides) {
   Settings s;
   s.file = file;
@@ -263,10 +294,11 @@ Settings parse_settings(const std::string& text, const fs::path& file, const std
   read_key(r, "Camera.type", c.type, file, "a string");
   if (c.type != "PinHole")
     throw InputError(file.string(), "key 'Camera.type': '" + c.type + "' is not supported (allowed: PinHole)");
-  c.camera.fx = required_number(r, {"Camera1.fx", "Camera.fx"}, file);
-  c.camera.fy = required_number(r, {"Camera1.fy", "Camera.fy"}, file);
-  c.camera.cx = required_number(r, {"Camera1.cx", "Camera.cx"}, file);
-  c.camera.cy = required_number(r, {"Camera1.cy", "Camera.cy"}, file);
+  std::map<std::string, std::string> camera_keys;  // "fx" -> the key it was read from
+  c.camera.fx = required_number(r, {"Camera1.fx", "Camera.fx"}, file, camera_keys["fx"]);
+  c.camera.fy = required_number(r, {"Camera1.fy", "Camera.fy"}, file, camera_keys["fy"]);
+  c.camera.cx = required_number(r, {"Camera1.cx", "Camera.cx"}, file, camera_keys["cx"]);
+  c.camera.cy = required_number(r, {"Camera1.cy", "Camera.cy"}, file, camera_keys["cy"]);
   for (auto [k3, k2, dst] : {std::tuple{"Camera1.k1", "Camera.k1", &c.camera.k1}, {"Camera1.k2", "Camera.k2", &c.camera.k2},
                              {"Camera1.p1", "Camera.p1", &c.camera.p1}, {"Camera1.p2", "Camera.p2", &c.camera.p2},
                              {"Camera1.k3", "Camera.k3", &c.camera.k3}})
@@ -275,7 +307,7 @@ Settings parse_settings(const std::string& text, const fs::path& file, const std
     throw InputError(file.string(), "missing key 'Camera.width'");
   if (!read_key(r, "Camera.height", c.camera.height, file, "an integer"))
     throw InputError(file.string(), "missing key 'Camera.height'");
-  if (auto err = c.camera.validate()) throw InputError(file.string(), "camera calibration: " + *err);
+  if (auto err = c.camera.validate()) throw_calibration_error(r, c.camera, *err, camera_keys, file);
   read_key(r, "Camera.fps", c.fps, file, "a number");
   if (!(c.fps > 0 && c.fps <= 1000)) throw InputError(file.string(), "key 'Camera.fps': must be in (0, 1000], got " + std::to_string(c.fps));
   int rgb = 1;

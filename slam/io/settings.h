@@ -54,6 +54,11 @@ void apply_setting_overrides(YAML::Node& root, const std::vector<SettingOverride
 // than the file; any other error passes unchanged.
 void blame_overrides(const std::vector<SettingOverride>& overrides, const std::function<void()>& load);
 
+// Throws an InputError when `camera`'s image size is not the sequence's `width` x `height`: at the
+// --set that gave Camera.width or Camera.height when one did, else at `source` (the settings file).
+void check_calibration_size(const PinholeCamera& camera, int width, int height, const std::string& source,
+                            const std::vector<SettingOverride>& overrides = {});
+
 // Loads and validates, with `overrides` set over the file's keys first; accepts OpenCV's `%YAML:1.0`
 // header. Throws InputError naming the file and the key (and the line for YAML syntax errors).
 Settings load_settings(const std::filesystem::path& file, const std::vector<SettingOverride>& overrides = {});

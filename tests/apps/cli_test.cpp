@@ -132,7 +132,12 @@ TEST(CliPipeline, RunWithoutSettingsUsesTheShippedOnesForItsDataset) {
 
   make_seven_scenes(root / "7scenes");
   expect_one_line_error(wardmap_cli("-q run " + shq(root / "7scenes") + " --out " + shq(root / "run7")),
-                        "7Scenes.yaml: calibration is for 640x480 images, the sequence's are 64x48");
+                        "7Scenes.yaml: Camera.width/height 640x480 do not match the sequence's images 64x48");
+  expect_one_line_error(
+      wardmap_cli("-q run " + shq(root / "7scenes") + " --set Camera.width=700 --out " + shq(root / "run7")),
+      "--set Camera.width=700: Camera.width/height 700x480 do not match the sequence's images 64x48");
+  expect_one_line_error(wardmap_cli("-q run " + shq(root / "7scenes") + " --set Camera1.fx=-1 --out " + shq(root / "run7")),
+                        "--set Camera1.fx=-1: key 'Camera1.fx': camera calibration: fx must be positive (got -1)");
   EXPECT_FALSE(fs::exists(root / "run7"));
 }
 

@@ -68,8 +68,32 @@ TEST(Settings, ErrorsNameTheKey) {
   EXPECT_EQ(error_of("Camera1.fx: abc\n"), "s.yaml:1: key 'Camera1.fx': expected a number, got 'abc'");
   EXPECT_EQ(error_of("Camera.type: \"KannalaBrandt8\"\n"),
             "s.yaml: key 'Camera.type': 'KannalaBrandt8' is not supported (allowed: PinHole)");
-  EXPECT_NE(error_of("Camera1.fx: -5\nCamera1.fy: 1\nCamera1.cx: 1\nCamera1.cy: 1\nCamera.width: 9\nCamera.height: 9\n")
-                .find("fx must be positive"), std::string::npos);
+  // A calibration the camera model refuses is reported at the key (and line) holding the value.
+  const std::string camera = "Camera1.fx: 5\nCamera1.fy: 1\nCamera.cx: 1\nCamera1.cy: 1\nCamera.width: 9\nCamera.height: 9\n";
+  const auto with = [&](const std::string& key, const std::string& value) {
+    std::string text = camera;
+    const size_t at = text.find(key + ": ");
+    const size_t end = text.find('\n', at);
+    return text.replace(at, end - at, key + ": " + value);
+  };
+  EXPECT_EQ(error_of(with("Camera1.fx", "-5")), "s.yaml:1: key 'Camera1.fx': camera calibration: fx must be positive (got -5)");
+  EXPECT_EQ(error_of(with("Camera1.fy", "0")), "s.yaml:2: key 'Camera1.fy': camera calibration: fy must be positive (got 0)");
+  EXPECT_EQ(error_of(with("Camera.cx", "12")),
+            "s.yaml:3: key 'Camera.cx': camera calibration: cx must lie inside the image width 9 (got 12)");
+  EXPECT_EQ(error_of(with("Camera1.cy", "-1")),
+            "s.yaml:4: key 'Camera1.cy': camera calibration: cy must lie inside the image height 9 (got -1)");
+  EXPECT_EQ(error_of(with("Camera.height", "0")),
+            "s.yaml:6: key 'Camera.height': camera calibration: image size must be positive (got 9x0)");
+  EXPECT_EQ(error_of(camera + "Camera1.k1: .nan\n"), "s.yaml: camera calibration: distortion coefficients must be finite");
+  // ... and when an override gave the value, at that --set.
+  std::string blamed;
+  try {
+    const std::vector<SettingOverride> set = {parse_setting_override("Camera1.fx=-2")};
+    blame_overrides(set, [&] { parse_settings(camera, "s.yaml", set); });
+  } catch (const InputError& ex) {
+    blamed = ex.what();
+  }
+  EXPECT_EQ(blamed, "--set Camera1.fx=-2: key 'Camera1.fx': camera calibration: fx must be positive (got -2)");
   EXPECT_EQ(error_of("semantics:\n  association: {chains: 2}\nsemantics:\n  groups: {size: 4}\n"),
             "s.yaml:3: key 'semantics' appears twice (lines 1 and 3); merge the two, the second would be ignored");
   EXPECT_EQ(error_of("a:\n  - b: {c: 1, c: 2}\n"),
@@ -86,6 +110,28 @@ TEST(Settings, ErrorsNameTheKey) {
   }
   EXPECT_EQ(e, "t.yaml:23: key 'tracking.max_lost_seconds': expected true or false, got '2.5'");
   EXPECT_THROW(check_range(5, 0, 1, "tracking.ratio", "t.yaml"), InputError);
+}
+
+// The calibration's image size against the sequence's, blamed on the --set that changed it.
+TEST(Settings, CalibrationSizeChecked) {
+  PinholeCamera c;
+  c.width = 640;
+  c.height = 480;
+  EXPECT_NO_THROW(check_calibration_size(c, 640, 480, "s.yaml"));
+  const auto error_of = [&](const std::vector<SettingOverride>& set) {
+    try {
+      check_calibration_size(c, 64, 480, "s.yaml", set);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_EQ(error_of({}), "s.yaml: Camera.width/height 640x480 do not match the sequence's images 64x480");
+  EXPECT_EQ(error_of({parse_setting_override("Camera.width=640")}),
+            "--set Camera.width=640: Camera.width/height 640x480 do not match the sequence's images 64x480");
+  // A --set of the size that agrees with the sequence is not the one to blame.
+  EXPECT_EQ(error_of({parse_setting_override("Camera.height=480")}),
+            "s.yaml: Camera.width/height 640x480 do not match the sequence's images 64x480");
 }
 
 TEST(Settings, ShippedFilesLoad) {
