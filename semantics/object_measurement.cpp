@@ -684,24 +684,51 @@ std::optional<ObjectPose> measure_pose(const cv::Mat& depth, const slam::Pinhole
 
 }  // namespace
 
-double box_median_depth(const cv::Mat& depth, const Eigen::Vector4d& box, const MeasurementOptions& o,
-                        const Eigen::Vector4d* exclude) {
-  if (depth.empty()) return 0;
+namespace {
+
+// Valid depths sampled over the trimmed box (about target_samples of them), without those inside
+// `exclude`.
+std::vector<double> box_depth_samples(const cv::Mat& depth, const Eigen::Vector4d& box, const MeasurementOptions& o,
+                                      const Eigen::Vector4d* exclude) {
+  std::vector<double> zs;
+  if (depth.empty()) return zs;
   const double w = box(2) - box(0), h = box(3) - box(1);
   const int x0 = std::max(0, static_cast<int>(box(0) + o.box_shrink * w));
   const int x1 = std::min(depth.cols - 1, static_cast<int>(box(2) - o.box_shrink * w));
   const int y0 = std::max(0, static_cast<int>(box(1) + o.box_shrink * h));
   const int y1 = std::min(depth.rows - 1, static_cast<int>(box(3) - o.box_shrink * h));
-  if (x1 < x0 || y1 < y0) return 0;
+  if (x1 < x0 || y1 < y0) return zs;
   const int stride = std::max(1, static_cast<int>(std::sqrt((x1 - x0 + 1.0) * (y1 - y0 + 1.0) / o.target_samples)));
-  std::vector<double> zs;
   for (int y = y0; y <= y1; y += stride)
     for (int x = x0; x <= x1; x += stride) {
       if (exclude && x >= (*exclude)(0) && x <= (*exclude)(2) && y >= (*exclude)(1) && y <= (*exclude)(3)) continue;
       const double z = depth.at<float>(y, x);
       if (z >= o.min_depth && z <= o.max_depth) zs.push_back(z);
     }
+  return zs;
+}
+
+}  // namespace
+
+double box_median_depth(const cv::Mat& depth, const Eigen::Vector4d& box, const MeasurementOptions& o,
+                        const Eigen::Vector4d* exclude) {
+  std::vector<double> zs = box_depth_samples(depth, box, o, exclude);
   return static_cast<int>(zs.size()) < (exclude ? o.min_points : 1) ? 0.0 : percentile(zs, 0.5);
+}
+
+double box_front_share(const cv::Mat& depth, const Eigen::Vector4d& box, const MeasurementOptions& o) {
+  std::vector<double> zs = box_depth_samples(depth, box, o, nullptr);
+  if (zs.empty()) return 0.0;
+  const double median = percentile(zs, 0.5);  // (reorders zs)
+  const auto front = std::count_if(zs.begin(), zs.end(), [&](double z) { return z < median - o.occluder_margin; });
+  return static_cast<double>(front) / static_cast<double>(zs.size());
+}
+
+// Support box `b` (a table) much larger than box `a` and holding most of it: what `a` stands on or in
+// front of.
+bool holds_as_support(const Eigen::Vector4d& a, const Eigen::Vector4d& b, const MeasurementOptions& o) {
+  const double area_a = (a(2) - a(0)) * (a(3) - a(1)), area_b = (b(2) - b(0)) * (b(3) - b(1));
+  return area_a > 0 && box_intersection(a, b) / area_a > o.support_containment && area_b > o.support_area_ratio * area_a;
 }
 
 std::vector<std::vector<int>> nearer_overlapping_detections(const cv::Mat& depth, const std::vector<Eigen::Vector4d>& boxes,
@@ -727,11 +754,8 @@ std::vector<std::vector<int>> nearer_overlapping_detections(const cv::Mat& depth
       if (!nearer_by_depth && !nearer_by_footprint) continue;
       // A much larger box that holds most of mine is what I stand on or in front of (a cup on a
       // table), not an occluder; a neighbour of my size in front of me is.
-      const double area_a = (a(2) - a(0)) * (a(3) - a(1)), area_b = (b(2) - b(0)) * (b(3) - b(1));
       const bool support = j < supports.size() && supports[j];
-      if (support && !nearer_by_depth && area_a > 0 && box_intersection(a, b) / area_a > o.support_containment &&
-          area_b > o.support_area_ratio * area_a)
-        continue;
+      if (support && !nearer_by_depth && holds_as_support(a, b, o)) continue;
       out[i].push_back(static_cast<int>(j));
     }
   return out;
@@ -782,9 +806,19 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
       for (size_t i = 0; i < n; ++i)
         if (!done[i] && (next < 0 || z[i] < z[next])) next = static_cast<int>(i);
     std::vector<Occluder> occluders;
-    for (int j : nearer[next])
+    for (int j : nearer[next]) {
+      // An unplaced support holding the box (a table cut by the border, its near edge nearer than a
+      // cup on its far half) cannot say which pixels are its own, and its whole box would hide what
+      // stands on it: it hides nothing when the box shows hardly anything in front of its own depth
+      // (measurement.support_front_share), else its whole box (a bed in front of a cabinet).
+      if (supports[static_cast<size_t>(j)] && !poses[static_cast<size_t>(j)] &&
+          holds_as_support(boxes[static_cast<size_t>(next)], boxes[static_cast<size_t>(j)], options.measurement) &&
+          box_front_share(depth, boxes[static_cast<size_t>(next)], options.measurement) <=
+              options.measurement.support_front_share)
+        continue;
       occluders.push_back({boxes[j], done[j] ? poses[j] : std::nullopt, labels[j] == labels[next],
                            options.box_masked_classes.count(labels[j]) > 0});
+    }
     poses[next] = measure_pose_from_depth(depth, camera, T_wc, boxes[next], up, labels[next], options, occluders);
     if (side_cut_poses && !poses[next] && nearer[next].empty())
       (*side_cut_poses)[next] =

@@ -82,6 +82,10 @@ std::optional<ObjectPose> measure_thin_side_cut(const cv::Mat& depth, const slam
 double box_median_depth(const cv::Mat& depth, const Eigen::Vector4d& box, const MeasurementOptions& options,
                         const Eigen::Vector4d* exclude = nullptr);
 
+// Share of the trimmed box's valid depths lying occluder_margin or more in front of its median
+// depth (0 without depth): how much of the box something nearer covers.
+double box_front_share(const cv::Mat& depth, const Eigen::Vector4d& box, const MeasurementOptions& options);
+
 // For each box, the indices of the nearer detections overlapping it.
 // `supports[i]` tells that detection i is of a class things stand on (a table): a much larger
 // support box holding most of a box is not its occluder.

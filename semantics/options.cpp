@@ -41,6 +41,7 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(measurement.floor_clearance, 0, 10, "measurement.floor_clearance");
   c(measurement.support_containment, 0, 1, "measurement.support_containment");
   c(measurement.support_area_ratio, 1, 1e6, "measurement.support_area_ratio");
+  c(measurement.support_front_share, 0, 1, "measurement.support_front_share");
   c(measurement.max_depth, 0.01, 1000, "measurement.max_depth");
   c(groups.split_distance, 0.01, 100, "groups.split_distance");
   c(groups.min_appearance_width, 0, 1e4, "groups.min_appearance_width");
@@ -121,6 +122,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   mk.read("occluder_inflate", o.measurement.occluder_inflate);
   mk.read("support_containment", o.measurement.support_containment);
   mk.read("support_area_ratio", o.measurement.support_area_ratio);
+  mk.read("support_front_share", o.measurement.support_front_share);
   mk.read("thin_support", o.measurement.thin_support);
   mk.read("flat_ratio", o.measurement.flat_ratio);
   mk.read("occluded_bottom_share", o.measurement.occluded_bottom_share);

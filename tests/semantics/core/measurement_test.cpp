@@ -524,6 +524,43 @@ TEST(Measurement, BottomCutTopSurfaceGetsNoPose) {
   EXPECT_TRUE(measure_pose_from_depth(d, camera(), slam::SE3(), box, up, "bed", o));
 }
 
+// A support without a pose (the bed above, cut by the bottom border) holding a small box it reaches
+// lower than: its whole box would hide what stands on it. It hides nothing when the small box shows
+// nothing in front of its own depth, and its whole box again when something does (a footboard).
+TEST(Measurement, UnplacedSupportHidesWhatStandsOnItOnlyWhenInFront) {
+  SemanticOptions o;
+  o.measurement.bottom_face_band = 0.3;
+  o.measurement.complete_depth_with_class_size = false;
+  const Eigen::Vector3d up(0, -1, 0);
+  cv::Mat d = bed_from_above();
+  // A 10 cm cube on the mattress's far end, 3.3 m away (u 312-327, v 361-376), farther than most
+  // of the bed: the bed is the nearer one by depth too (the support rule of
+  // nearer_overlapping_detections spares only a support that is not).
+  d(cv::Rect(312, 361, 16, 16)).setTo(3.25f);
+  const Eigen::Vector4d bed(186, 311, 453, 479), cube(311, 360, 329, 378);
+  ASSERT_EQ(nearer_overlapping_detections(d, {bed, cube}, o.measurement, {true, false})[1], std::vector<int>{0});
+  const std::vector<std::string> labels = {"bed", "box"};
+  EXPECT_LE(box_front_share(d, cube, o.measurement), o.measurement.support_front_share);
+  auto poses = measure_keyframe_poses(d, camera(), slam::SE3(), {bed, cube}, labels, up, o);
+  EXPECT_FALSE(poses[0]);
+  ASSERT_TRUE(poses[1]);
+  EXPECT_NEAR(poses[1]->pose.translation().z(), 3.3, 0.1);
+  EXPECT_NEAR(poses[1]->pose.translation().x(), 0.0, 0.05);
+  // The old rule (every unplaced occluder hides its whole box) leaves it without a pose.
+  o.measurement.support_front_share = -1;
+  EXPECT_FALSE(measure_keyframe_poses(d, camera(), slam::SE3(), {bed, cube}, labels, up, o)[1]);
+  // A board 0.5 m in front of the cube's lowest third: the bed hides its whole box again.
+  o.measurement.support_front_share = 0.1;
+  d(cv::Rect(300, 371, 40, 8)).setTo(2.75f);
+  EXPECT_GT(box_front_share(d, cube, o.measurement), o.measurement.support_front_share);
+  poses = measure_keyframe_poses(d, camera(), slam::SE3(), {bed, cube}, labels, up, o);
+  EXPECT_FALSE(poses[1]);
+  EXPECT_DOUBLE_EQ(
+      load_semantic_options(YAML::Load("measurement: {support_front_share: 0.3}"), "s.yaml").measurement.support_front_share,
+      0.3);
+  test::expect_load_error_names("measurement: {support_front_share: 2}", "semantics.measurement.support_front_share");
+}
+
 // A detector box ending 9 px short of the border: cut there when the mattress fills the rows below
 // it, not when they show the floor (the bed's near end is then in the box).
 TEST(Measurement, BoxEndingShortOfTheBorderIsCutWhenTheTopSurfaceContinues) {
