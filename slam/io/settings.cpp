@@ -55,11 +55,12 @@ double required_number(const YAML::Node& root, std::initializer_list<const char*
 // a --set override is blamed for its own value, and a file's line is given).
 [[noreturn]] void throw_calibration_error(const YAML::Node& root, const PinholeCamera& camera, const std::string& error,
                                           const std::map<std::string, std::string>& keys, const fs::path& file) {
-  std::string key;
-  if (error.rfind("image size", 0) == 0)
+  std::string key;  // none for the distortion coefficients (five keys) or a message not foreseen here
+  if (error.rfind("image size", 0) == 0) {
     key = camera.width <= 0 ? "Camera.width" : "Camera.height";
-  else if (error.rfind("distortion", 0) != 0)
-    key = keys.at(error.substr(0, 2));  // "fx", "fy", "cx", "cy"
+  } else if (const auto k = keys.find(error.substr(0, 2)); k != keys.end()) {  // "fx", "fy", "cx", "cy"
+    key = k->second;
+  }
   if (key.empty()) throw InputError(file.string(), "camera calibration: " + error);
   const YAML::Node n = root[key];
   throw InputError(file.string(), "key '" + key + "': camera calibration: " + error, n ? n.Mark().line + 1 : 0);
