@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -23,7 +24,7 @@ using slam::Trajectory;
 namespace {
 
 struct EvalArgs {
-  std::string gt, est, align = "sim3", json, plot, est_format = "auto";
+  std::string gt, est, align = "sim3", json, plot, errors, est_format = "auto";
   double max_dt = 0.02;
   int rpe_delta = 1;
   ReaderArgs reader;
@@ -97,6 +98,21 @@ void run_eval(const EvalArgs& a) {
                                        {"translation", {T.translation().x(), T.translation().y(), T.translation().z()}}}}};
     slam::io::write_file_atomic(a.json, j.dump(2) + "\n");
   }
+  if (!a.errors.empty()) {
+    // One line per pose pair: where along the run the error builds up (the RMSE hides it).
+    std::string csv = "timestamp,ate_m,dx_m,dy_m,dz_m,rotation_deg\n";
+    for (size_t k = 0; k < pairs.size(); ++k) {
+      const auto [i, j] = pairs[k];
+      const slam::SE3 aligned = ate.transform.transform_pose(est.poses[j]);
+      const Eigen::Vector3d d = aligned.translation() - gt.poses[i].translation();
+      const double angle = gt.poses[i].rotation().angularDistance(aligned.rotation()) * 180.0 / M_PI;
+      char line[160];
+      std::snprintf(line, sizeof line, "%.6f,%.6f,%.6f,%.6f,%.6f,%.4f\n", est.timestamps[j], ate.errors[k], d.x(), d.y(),
+                    d.z(), angle);
+      csv += line;
+    }
+    slam::io::write_file_atomic(a.errors, csv);
+  }
   if (!a.plot.empty()) {
     slam::eval::PlotSeries g{"ground truth", {}, cv::Scalar(40, 40, 40)};
     slam::eval::PlotSeries e{"estimate (" + a.align + " aligned)", {}, cv::Scalar(30, 60, 220)};
@@ -129,6 +145,9 @@ void add_eval_command(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "tum", "kitti"}));
   cmd->add_option("--json", args->json, "Write the figures as JSON to this file");
   cmd->add_option("--plot", args->plot, "Draw the aligned estimate over the ground truth (top view) to this PNG");
+  cmd->add_option("--errors", args->errors,
+                  "Write each pose pair's error after the alignment to this CSV: timestamp, ATE (m), its x/y/z "
+                  "components (m, ground-truth frame) and the rotation error (deg)");
   add_reader_options(cmd, args->reader);
   cmd->callback([args] { run_eval(*args); });
 }

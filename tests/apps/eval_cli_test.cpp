@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <sstream>
 
 #include "slam/core/sim3.h"
 #include "slam/io/trajectory_io.h"
@@ -156,6 +158,51 @@ TEST(EvalCli, TumSe3) {
   const nlohmann::json j = run_eval(dir / "gt.txt", dir / "est.txt", "se3");
   EXPECT_NEAR(j["ate"]["rmse"].get<double>(), ref.rmse, 1e-6);
   EXPECT_DOUBLE_EQ(j["scale"].get<double>(), 1.0);
+}
+
+// --errors: one CSV line per pose pair after the alignment. The estimate is the ground truth moved
+// by a known Sim(3), with pose 50 displaced by a known vector and turned by a known angle: after
+// the Sim(3) alignment (fitted on 200 poses, one of them off) that pose's line shows them.
+TEST(EvalCli, PerPoseErrorsAfterTheAlignment) {
+  const fs::path dir = scratch_dir();
+  const Trajectory gt = ground_truth();
+  Trajectory est;
+  make_estimate(gt, kTruth, 0.0, est);
+  // Displace pose 50 in the ground truth's frame: 0.2 m along x and 3 degrees about z.
+  const SE3 off(Eigen::Quaterniond(Eigen::AngleAxisd(3.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ())) *
+                    gt.poses[50].rotation(),
+                gt.poses[50].translation() + Eigen::Vector3d(0.2, 0, 0));
+  est.poses[50] = kTruth.transform_pose(off);
+  slam::io::write_tum(dir / "gt.txt", gt);
+  slam::io::write_tum(dir / "est.txt", est);
+  const CliResult r = wardmap_cli("eval --gt " + shq(dir / "gt.txt") + " --est " + shq(dir / "est.txt") +
+                                  " --align sim3 --errors " + shq(dir / "errors.csv"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(dir / "errors.csv");
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "timestamp,ate_m,dx_m,dy_m,dz_m,rotation_deg");
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> v;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) v.push_back(std::stod(cell));
+    ASSERT_EQ(v.size(), 6u) << line;
+    rows.push_back(v);
+  }
+  ASSERT_EQ(rows.size(), gt.size());
+  // The one displaced pose pulls the fit by about 1/200 of its offset: 1 mm, 0.015 degrees.
+  EXPECT_NEAR(rows[50][0], gt.timestamps[50], 1e-6);
+  EXPECT_NEAR(rows[50][2], 0.2, 0.003);
+  EXPECT_NEAR(rows[50][3], 0.0, 0.003);
+  EXPECT_NEAR(rows[50][4], 0.0, 0.003);
+  EXPECT_NEAR(rows[50][1], std::hypot(rows[50][2], rows[50][3], rows[50][4]), 1e-5);
+  EXPECT_NEAR(rows[50][5], 3.0, 0.05);
+  for (size_t k = 0; k < rows.size(); ++k)
+    if (k != 50) {
+      EXPECT_LT(rows[k][1], 0.003) << k;
+      EXPECT_LT(rows[k][5], 0.05) << k;
+    }
 }
 
 // --first-frame / --frames with a dataset as --gt: the ground truth of the stretch alone, so an
