@@ -6,15 +6,17 @@
 
 namespace wardmap::slam {
 
-std::optional<std::string> PinholeCamera::validate() const {
+std::optional<std::string> PinholeCamera::validate(std::string* parameter) const {
   std::ostringstream err;
-  if (!(fx > 0) || !std::isfinite(fx)) err << "fx must be positive (got " << fx << ")";
-  else if (!(fy > 0) || !std::isfinite(fy)) err << "fy must be positive (got " << fy << ")";
-  else if (width <= 0 || height <= 0) err << "image size must be positive (got " << width << "x" << height << ")";
-  else if (!(cx > 0 && cx < width)) err << "cx must lie inside the image width " << width << " (got " << cx << ")";
-  else if (!(cy > 0 && cy < height)) err << "cy must lie inside the image height " << height << " (got " << cy << ")";
-  else if (!std::isfinite(k1 + k2 + p1 + p2 + k3)) err << "distortion coefficients must be finite";
-  if (err.tellp() == 0) return std::nullopt;
+  std::string bad;
+  if (!(fx > 0) || !std::isfinite(fx)) bad = "fx", err << "fx must be positive (got " << fx << ")";
+  else if (!(fy > 0) || !std::isfinite(fy)) bad = "fy", err << "fy must be positive (got " << fy << ")";
+  else if (width <= 0 || height <= 0) bad = "size", err << "image size must be positive (got " << width << "x" << height << ")";
+  else if (!(cx > 0 && cx < width)) bad = "cx", err << "cx must lie inside the image width " << width << " (got " << cx << ")";
+  else if (!(cy > 0 && cy < height)) bad = "cy", err << "cy must lie inside the image height " << height << " (got " << cy << ")";
+  else if (!std::isfinite(k1 + k2 + p1 + p2 + k3)) bad = "distortion", err << "distortion coefficients must be finite";
+  if (parameter) *parameter = bad;
+  if (bad.empty()) return std::nullopt;
   return err.str();
 }
 

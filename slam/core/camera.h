@@ -13,8 +13,9 @@ struct PinholeCamera {
   int width = 0, height = 0;
 
   bool has_distortion() const { return k1 != 0 || k2 != 0 || p1 != 0 || p2 != 0 || k3 != 0; }
-  // Empty when valid, else a sentence naming the offending parameter.
-  std::optional<std::string> validate() const;
+  // Empty when valid, else a sentence naming the offending parameter; with `parameter`, also its
+  // name: "fx", "fy", "size", "cx", "cy" or "distortion".
+  std::optional<std::string> validate(std::string* parameter = nullptr) const;
 
   // Camera-frame point (z > 0) to distorted pixel.
   Eigen::Vector2d project(const Eigen::Vector3d& p_cam) const;

@@ -51,14 +51,16 @@ double required_number(const YAML::Node& root, std::initializer_list<const char*
   throw InputError(file.string(), std::string("missing key '") + *keys.begin() + "' (camera calibration)");
 }
 
-// A calibration the camera model refuses, reported at the key that holds the wrong value (so that
-// a --set override is blamed for its own value, and a file's line is given).
+// A calibration the camera model refuses (`parameter` as PinholeCamera::validate names it), reported
+// at the key that holds the wrong value (so that a --set override is blamed for its own value, and a
+// file's line is given); the distortion coefficients, five keys, are reported without one.
 [[noreturn]] void throw_calibration_error(const YAML::Node& root, const PinholeCamera& camera, const std::string& error,
+                                          const std::string& parameter,
                                           const std::map<std::string, std::string>& keys, const fs::path& file) {
-  std::string key;  // none for the distortion coefficients (five keys) or a message not foreseen here
-  if (error.rfind("image size", 0) == 0) {
+  std::string key;
+  if (parameter == "size") {
     key = camera.width <= 0 ? "Camera.width" : "Camera.height";
-  } else if (const auto k = keys.find(error.substr(0, 2)); k != keys.end()) {  // "fx", "fy", "cx", "cy"
+  } else if (const auto k = keys.find(parameter); k != keys.end()) {  // "fx", "fy", "cx", "cy"
     key = k->second;
   }
   if (key.empty()) throw InputError(file.string(), "camera calibration: " + error);
@@ -308,7 +310,9 @@ Settings parse_settings(const std::string& text, const fs::path& file, const std
     throw InputError(file.string(), "missing key 'Camera.width'");
   if (!read_key(r, "Camera.height", c.camera.height, file, "an integer"))
     throw InputError(file.string(), "missing key 'Camera.height'");
-  if (auto err = c.camera.validate()) throw_calibration_error(r, c.camera, *err, camera_keys, file);
+  std::string bad_parameter;
+  if (auto err = c.camera.validate(&bad_parameter))
+    throw_calibration_error(r, c.camera, *err, bad_parameter, camera_keys, file);
   read_key(r, "Camera.fps", c.fps, file, "a number");
   if (!(c.fps > 0 && c.fps <= 1000)) throw InputError(file.string(), "key 'Camera.fps': must be in (0, 1000], got " + std::to_string(c.fps));
   int rgb = 1;
