@@ -136,7 +136,7 @@ double run_slam_job(const SlamJob& job) {
                  "no relocalisation, a lost track starts a new submap");
   else
     front.set_vocabulary(std::make_shared<const slam::place::Vocabulary>(slam::place::Vocabulary::load(vocabulary_file)));
-  std::string frames_csv = "timestamp,status,submap\n", timing_csv = "timestamp,seconds,extract_seconds,mapping_seconds,wait_seconds,flow\n";
+  std::string frames_csv = "timestamp,status,submap\n", timing_csv = "timestamp,seconds,extract_seconds,mapping_seconds,wait_seconds,flow,features,inliers,keyframe\n";
   std::vector<double> seconds, stamps;
   double wait_seconds = 0;  // the tracker waiting for a threaded mapper behind its time
   size_t flow_frames = 0;  // frames with the optical flow on (tracking.flow_extend / _mono, flow_budget_ms)
@@ -190,8 +190,9 @@ double run_slam_job(const SlamJob& job) {
           submap_of[k] = r.submap;
           break;
         }
-    std::snprintf(line, sizeof line, "%.6f,%.6f,%.6f,%.6f,%.6f,%d\n", r.timestamp, r.seconds, r.extract_seconds,
-                  r.mapping_seconds, r.wait_seconds, r.flow ? 1 : 0);
+    std::snprintf(line, sizeof line, "%.6f,%.6f,%.6f,%.6f,%.6f,%d,%d,%d,%d\n", r.timestamp, r.seconds,
+                  r.extract_seconds, r.mapping_seconds, r.wait_seconds, r.flow ? 1 : 0, r.features, r.inliers,
+                  r.keyframe ? 1 : 0);
     timing_csv += line;
     seconds.push_back(r.seconds);
     wait_seconds += r.wait_seconds;

@@ -383,9 +383,23 @@ TEST(CliPipeline, MonocularRunIsAccurateAndDeterministic) {
   EXPECT_EQ(nlohmann::json::parse(read_all(dir / "a" / "report.json")).at("flow_frames").get<int>(), 150);
   EXPECT_NE(read_all(dir / "a" / "report.md").find("- optical flow: on 150 of 150 frames"), std::string::npos);
   const std::string timing = read_all(dir / "a" / "timing.csv");
-  EXPECT_EQ(timing.rfind("timestamp,seconds,extract_seconds,mapping_seconds,wait_seconds,flow\n", 0), 0u);
+  EXPECT_EQ(timing.rfind("timestamp,seconds,extract_seconds,mapping_seconds,wait_seconds,flow,features,inliers,keyframe\n", 0), 0u);
   EXPECT_EQ(std::count(timing.begin(), timing.end(), '\n'), 151);
-  EXPECT_EQ(timing.find(",0\n"), std::string::npos) << "a frame without the flow";
+  std::istringstream rows(timing);
+  std::string row;
+  std::getline(rows, row);  // header
+  int keyframe_rows = 0;
+  while (std::getline(rows, row)) {
+    std::vector<std::string> cells;
+    std::istringstream cells_in(row);
+    for (std::string cell; std::getline(cells_in, cell, ',');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 9u) << row;
+    EXPECT_EQ(cells[5], "1") << "a frame without the flow: " << row;
+    EXPECT_GT(std::stoi(cells[6]), 500) << "features: " << row;
+    EXPECT_GE(std::stoi(cells[7]), 0) << row;
+    keyframe_rows += cells[8] == "1";
+  }
+  EXPECT_GT(keyframe_rows, 2) << "keyframes flagged in timing.csv";
   for (const char* f : {"trajectory.txt", "frames.csv", "keyframes.txt", "points.ply"})
     EXPECT_EQ(read_all(dir / "a" / f), read_all(dir / "b" / f)) << f << " differs between two --deterministic runs";
   EXPECT_NE(read_all(dir / "a" / "frames.csv").find(",backfilled,"), std::string::npos);
