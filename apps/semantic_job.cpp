@@ -136,7 +136,11 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
   }
   options.association.mode = job.association;
   options.association.crf.seed = job.seed;
-  det.kind = job.detector;
+  const YAML::Node detection_section = std::as_const(sections)["detection"];
+  if (!job.detector.empty()) det.kind = job.detector;  // --detector over detection.kind
+  else if (!(detection_section && detection_section.IsMap() && detection_section["kind"])) det.kind = default_detector_kind(job.sequence);
+  setup->detector_kind = det.kind;
+  spdlog::info("detector: {}{}", det.kind, job.detector.empty() ? " (the default for this sequence and settings)" : "");
   det.noise.seed = job.seed;
   if (!job.models_dir.empty()) det.models_dir = job.models_dir;  // --models over detection.models_dir
   det.landmark_set = !job.landmark_set.empty() ? job.landmark_set
@@ -154,6 +158,10 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
   }
   setup->cache = std::make_unique<DetectionCache>(*setup->detector, std::move(embed));
   return setup;
+}
+
+std::string default_detector_kind(const fs::path& sequence) {
+  return fs::exists(sequence / "annotations.jsonl") ? "annotations" : "yolox";
 }
 
 SemanticRun run_semantic_job(const SemanticJob& job) {
@@ -324,7 +332,7 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
     map.up = up;
     semantics::write_map_glb(job.out / "map.glb", map);
     const auto& T = run.times;
-    json report = {{"sequence", job.sequence.string()}, {"poses", own_run ? "gt" : "slam"}, {"detector", job.detector},
+    json report = {{"sequence", job.sequence.string()}, {"poses", own_run ? "gt" : "slam"}, {"detector", setup->detector_kind},
                    {"association", job.association}, {"seed", job.seed}, {"frames", run.frames},
                    {"keyframes", run.keyframes.size()}, {"groups", run.result.num_groups},
                    {"group_objects", run.result.num_group_objects}, {"measurements", run.measurements.size()},
@@ -337,7 +345,7 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
     report["settings"] = job.settings.string();     // empty: the defaults
     report["settings_overrides"] = overrides_json(job.settings_overrides);
     std::string md = "# wardmap run\n\n- sequence: `" + job.sequence.string() + "`\n- poses: " + (own_run ? "ground truth" : "SLAM keyframes") + "\n- detector: " +
-                     job.detector + "\n- association: " + job.association + "\n- settings: " +
+                     setup->detector_kind + "\n- association: " + job.association + "\n- settings: " +
                      (job.settings.empty() ? std::string("the defaults") : "`" + job.settings.string() + "`") +
                      overrides_text(job.settings_overrides) + "\n- keyframes: " +
                      std::to_string(run.keyframes.size()) + ", groups: " + std::to_string(run.result.num_groups) +

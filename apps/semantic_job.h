@@ -32,7 +32,9 @@ struct SemanticJob {
   // --set KEY=VALUE, over the settings file's keys (without a file: semantics.* and detection.* only)
   std::vector<slam::io::SettingOverride> settings_overrides;
   std::filesystem::path out;          // run folder; empty: write nothing
-  std::string detector = "annotations";
+  // --detector. Empty: the settings' detection.kind when they give one, else annotations on a
+  // sequence with annotations.jsonl (wardmap synth), else yolox (default_detector_kind).
+  std::string detector;
   std::string association = "hierarchical";
   std::string landmark_set;           // empty: road for KITTI, indoor otherwise
   std::filesystem::path models_dir;
@@ -66,11 +68,16 @@ struct SemanticSetup {
   slam::PinholeCamera camera;
   semantics::SemanticOptions options;
   std::unique_ptr<semantics::Detector> detector;
+  std::string detector_kind;  // yolox, nanodet or annotations: the job's choice or its default
   std::unique_ptr<DetectionCache> cache;  // the detector and the embedder, once per image
   ~SemanticSetup();
 };
 
 std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job);
+
+// The detector of a job that names none (--detector) and whose settings give no detection.kind:
+// annotations when the sequence has annotations.jsonl, else yolox.
+std::string default_detector_kind(const std::filesystem::path& sequence);
 
 struct SemanticRun {
   semantics::AssociationResult result;

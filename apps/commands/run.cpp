@@ -45,8 +45,7 @@ void run(RunArgs& a) {
   }
   if (a.mode == "mono")
     throw InputError(a.job.sequence.string(), "--poses gt measures objects from depth: use --mode rgbd on a sequence with depth");
-  spdlog::info("run: {} (poses: ground truth, detector: {}, association: {})", a.job.sequence.string(), a.job.detector,
-               a.job.association);
+  spdlog::info("run: {} (poses: ground truth, association: {})", a.job.sequence.string(), a.job.association);
   const SemanticRun r = run_semantic_job(a.job);
   std::printf("frames %d, keyframes %zu, groups %d, group objects %d, measurements %zu, landmarks %zu\n", r.frames,
               r.keyframes.size(), r.result.num_groups, r.result.num_group_objects, r.measurements.size(),
@@ -61,8 +60,10 @@ void run(RunArgs& a) {
 
 void add_semantic_options(CLI::App* cmd, SemanticJob& job) {
   cmd->add_option("--settings", job.settings, "Settings YAML: camera (ORB-SLAM3 keys) and the semantics/detection sections");
-  cmd->add_option("--detector", job.detector, "Object detector: annotations (synthetic sequences), yolox or nanodet")
-      ->capture_default_str()
+  cmd->add_option("--detector", job.detector,
+                  "Object detector: annotations (a wardmap synth sequence's boxes, with noise), yolox or nanodet\n"
+                  "(default: the settings' detection.kind, else annotations when the sequence has annotations.jsonl,\n"
+                  "else yolox)")
       ->check(CLI::IsMember({"annotations", "yolox", "nanodet"}));
   cmd->add_option("--classes", job.landmark_set, "Landmark class set of the network detectors: hospital, road or indoor "
                                                  "(default: road on KITTI, indoor otherwise)")
