@@ -99,6 +99,23 @@ std::string format_baseline_comparison(const SemanticRun& r) {
 
 SemanticSetup::~SemanticSetup() = default;  // DetectionCache is complete here
 
+namespace {
+
+// Whether the settings (file and --set) give the key at this path.
+bool settings_give(const YAML::Node& root, std::initializer_list<const char*> path) {
+  YAML::Node node;
+  node.reset(root);  // not operator=, which would assign to root's node
+  for (const char* key : path) {
+    if (!node.IsMap()) return false;
+    const YAML::Node child = std::as_const(node)[key];
+    if (!child) return false;
+    node.reset(child);
+  }
+  return true;
+}
+
+}  // namespace
+
 std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
   auto reader = slam::io::open_sequence(job.sequence, job.reader);
   const auto& info = reader->info();
@@ -134,18 +151,17 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
       det = semantics::detector_options_from_yaml(doc["detection"], sections_file);
     });
   }
-  options.association.mode = job.association;
-  options.association.crf.seed = job.seed;
-  const YAML::Node detection_section = std::as_const(sections)["detection"];
-  if (!job.detector.empty()) det.kind = job.detector;  // --detector over detection.kind
-  else if (!(detection_section && detection_section.IsMap() && detection_section["kind"])) det.kind = default_detector_kind(job.sequence);
+  // A flag over the settings' key; without either, a default that depends on the sequence.
+  if (!job.association.empty()) options.association.mode = job.association;
+  if (job.seed) options.association.crf.seed = det.noise.seed = *job.seed;
+  if (!job.detector.empty()) det.kind = job.detector;
+  else if (!settings_give(sections, {"detection", "kind"})) det.kind = default_detector_kind(job.sequence);
+  if (!job.landmark_set.empty()) det.landmark_set = job.landmark_set;
+  else if (!settings_give(sections, {"detection", "landmark_set"}))
+    det.landmark_set = info.kind == slam::io::DatasetKind::Kitti ? "road" : "indoor";
+  if (!job.models_dir.empty()) det.models_dir = job.models_dir;
   setup->detector_kind = det.kind;
-  spdlog::info("detector: {}{}", det.kind, job.detector.empty() ? " (the default for this sequence and settings)" : "");
-  det.noise.seed = job.seed;
-  if (!job.models_dir.empty()) det.models_dir = job.models_dir;  // --models over detection.models_dir
-  det.landmark_set = !job.landmark_set.empty() ? job.landmark_set
-                     : info.kind == slam::io::DatasetKind::Kitti ? "road"
-                                                                 : "indoor";
+  spdlog::info("detector: {}, classes: {}, association: {}", det.kind, det.landmark_set, options.association.mode);
   if (auto err = det.validate()) throw InputError(sections_file.empty() ? "--detector" : sections_file.string(), *err);
   setup->detector = semantics::make_detector(det, job.sequence);
   semantics::SemanticMapper::EmbedFn embed;
@@ -333,7 +349,7 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
     semantics::write_map_glb(job.out / "map.glb", map);
     const auto& T = run.times;
     json report = {{"sequence", job.sequence.string()}, {"poses", own_run ? "gt" : "slam"}, {"detector", setup->detector_kind},
-                   {"association", job.association}, {"seed", job.seed}, {"frames", run.frames},
+                   {"association", options.association.mode}, {"seed", options.association.crf.seed}, {"frames", run.frames},
                    {"keyframes", run.keyframes.size()}, {"groups", run.result.num_groups},
                    {"group_objects", run.result.num_group_objects}, {"measurements", run.measurements.size()},
                    {"landmarks", run.result.landmarks.size()},
@@ -345,7 +361,7 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
     report["settings"] = job.settings.string();     // empty: the defaults
     report["settings_overrides"] = overrides_json(job.settings_overrides);
     std::string md = "# wardmap run\n\n- sequence: `" + job.sequence.string() + "`\n- poses: " + (own_run ? "ground truth" : "SLAM keyframes") + "\n- detector: " +
-                     setup->detector_kind + "\n- association: " + job.association + "\n- settings: " +
+                     setup->detector_kind + "\n- association: " + options.association.mode + "\n- settings: " +
                      (job.settings.empty() ? std::string("the defaults") : "`" + job.settings.string() + "`") +
                      overrides_text(job.settings_overrides) + "\n- keyframes: " +
                      std::to_string(run.keyframes.size()) + ", groups: " + std::to_string(run.result.num_groups) +

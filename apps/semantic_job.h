@@ -32,14 +32,18 @@ struct SemanticJob {
   // --set KEY=VALUE, over the settings file's keys (without a file: semantics.* and detection.* only)
   std::vector<slam::io::SettingOverride> settings_overrides;
   std::filesystem::path out;          // run folder; empty: write nothing
-  // --detector. Empty: the settings' detection.kind when they give one, else annotations on a
-  // sequence with annotations.jsonl (wardmap synth), else yolox (default_detector_kind).
+  // The flags below, when given, win over the settings' keys; unset (empty), the settings' key
+  // decides, and without it the default named.
+  // --detector / detection.kind: annotations on a sequence with annotations.jsonl (wardmap synth),
+  // else yolox (default_detector_kind).
   std::string detector;
-  std::string association = "hierarchical";
-  std::string landmark_set;           // empty: road for KITTI, indoor otherwise
-  std::filesystem::path models_dir;
+  std::string association;            // --association / semantics.association.mode: hierarchical
+  std::string landmark_set;           // --classes / detection.landmark_set: road for KITTI, indoor otherwise
+  std::filesystem::path models_dir;   // --models / detection.models_dir
   bool embedding = true;
-  std::uint64_t seed = 1;
+  // --seed: the Gibbs sampler's and the detector noise's (detection.annotations.seed); unset: the
+  // sampler's is 1.
+  std::optional<std::uint64_t> seed;
   bool progress = true;
   // With the hierarchical association, also associate the same measurements with the HDP-only
   // baseline (HDP-SLAM) and report both; its map is not written.

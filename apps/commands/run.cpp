@@ -45,7 +45,7 @@ void run(RunArgs& a) {
   }
   if (a.mode == "mono")
     throw InputError(a.job.sequence.string(), "--poses gt measures objects from depth: use --mode rgbd on a sequence with depth");
-  spdlog::info("run: {} (poses: ground truth, association: {})", a.job.sequence.string(), a.job.association);
+  spdlog::info("run: {} (poses: ground truth)", a.job.sequence.string());
   const SemanticRun r = run_semantic_job(a.job);
   std::printf("frames %d, keyframes %zu, groups %d, group objects %d, measurements %zu, landmarks %zu\n", r.frames,
               r.keyframes.size(), r.result.num_groups, r.result.num_group_objects, r.measurements.size(),
@@ -62,15 +62,17 @@ void add_semantic_options(CLI::App* cmd, SemanticJob& job) {
   cmd->add_option("--settings", job.settings, "Settings YAML: camera (ORB-SLAM3 keys) and the semantics/detection sections");
   cmd->add_option("--detector", job.detector,
                   "Object detector: annotations (a wardmap synth sequence's boxes, with noise), yolox or nanodet\n"
-                  "(default: the settings' detection.kind, else annotations when the sequence has annotations.jsonl,\n"
+                  "(default: detection.kind of the settings, else annotations when the sequence has annotations.jsonl,\n"
                   "else yolox)")
       ->check(CLI::IsMember({"annotations", "yolox", "nanodet"}));
   cmd->add_option("--classes", job.landmark_set, "Landmark class set of the network detectors: hospital, road or indoor "
-                                                 "(default: road on KITTI, indoor otherwise)")
+                                                 "(default: detection.landmark_set of the settings, else road on KITTI, indoor otherwise)")
       ->check(CLI::IsMember({"hospital", "road", "indoor", "coco"}));
   cmd->add_option("--models", job.models_dir, "Folder searched first for the ONNX weights (then $WARDMAP_MODELS, ../shared/models)");
   cmd->add_flag("!--no-embedding", job.embedding, "Do not compute OSNet appearance embeddings");
-  cmd->add_option("--seed", job.seed, "Seed of the detector noise and of the Gibbs sampler")->capture_default_str();
+  cmd->add_option_function<std::uint64_t>(
+      "--seed", [&job](const std::uint64_t& seed) { job.seed = seed; },
+      "Seed of the detector noise and of the Gibbs sampler (default: detection.annotations.seed, and 1)");
 }
 
 void add_baseline_option(CLI::App* cmd, SemanticJob& job) {
@@ -94,8 +96,9 @@ void add_run_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"gt", "slam"}));
   cmd->add_option("--mode", a->mode, "SLAM input: rgbd or mono (default: rgbd when the sequence has depth images, else mono)")->check(CLI::IsMember({"rgbd", "mono"}));
-  cmd->add_option("--association", a->job.association, "Object association: hierarchical (the paper) or hdp-only (HDP-SLAM baseline)")
-      ->capture_default_str()
+  cmd->add_option("--association", a->job.association,
+                  "Object association: hierarchical (the paper) or hdp-only (HDP-SLAM baseline)\n"
+                  "(default: semantics.association.mode of the settings, else hierarchical)")
       ->check(CLI::IsMember({"hierarchical", "hdp-only"}));
   cmd->add_option("--vocabulary", a->vocabulary, "Place-recognition vocabulary for relocalisation (default: "
                                                  "$WARDMAP_VOCABULARY, then data/vocabulary/orb-k10l4.bin)");

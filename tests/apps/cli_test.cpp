@@ -739,6 +739,16 @@ TEST(CliObjects, EvalObjectsAndCompare) {
   std::ifstream hdp_in(dir / "hdp" / "report.json");
   const nlohmann::json hdp_report = nlohmann::json::parse(hdp_in);
   EXPECT_FALSE(hdp_report.contains("baseline"));
+  EXPECT_EQ(hdp_report.at("association"), "hdp-only");
+  // The settings' semantics.association.mode chooses it too when --association does not.
+  ASSERT_EQ(wardmap_cli("-q run " + shq(dir / "ward") + " --poses gt --no-embedding --set semantics.association.mode=hdp-only --out " +
+                        shq(dir / "hdp_set"))
+                .code,
+            0);
+  std::ifstream hdp_set_in(dir / "hdp_set" / "report.json");
+  const nlohmann::json hdp_set = nlohmann::json::parse(hdp_set_in);
+  EXPECT_EQ(hdp_set.at("association"), "hdp-only");
+  EXPECT_EQ(hdp_set.at("objects"), hdp_report.at("objects"));
   EXPECT_EQ(report.at("baseline").at("objects"), hdp_report.at("objects"));
   EXPECT_EQ(report.at("baseline").at("landmarks"), hdp_report.at("landmarks"));
   EXPECT_EQ(report.at("baseline").at("landmarks_by_class"), hdp_report.at("landmarks_by_class"));
