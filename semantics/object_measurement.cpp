@@ -708,6 +708,13 @@ std::vector<double> box_depth_samples(const cv::Mat& depth, const Eigen::Vector4
   return zs;
 }
 
+// Support box `b` (a table) much larger than box `a` and holding most of it: what `a` stands on or in
+// front of.
+bool holds_as_support(const Eigen::Vector4d& a, const Eigen::Vector4d& b, const MeasurementOptions& o) {
+  const double area_a = (a(2) - a(0)) * (a(3) - a(1)), area_b = (b(2) - b(0)) * (b(3) - b(1));
+  return area_a > 0 && box_intersection(a, b) / area_a > o.support_containment && area_b > o.support_area_ratio * area_a;
+}
+
 }  // namespace
 
 double box_median_depth(const cv::Mat& depth, const Eigen::Vector4d& box, const MeasurementOptions& o,
@@ -722,13 +729,6 @@ double box_front_share(const cv::Mat& depth, const Eigen::Vector4d& box, const M
   const double median = percentile(zs, 0.5);  // (reorders zs)
   const auto front = std::count_if(zs.begin(), zs.end(), [&](double z) { return z < median - o.occluder_margin; });
   return static_cast<double>(front) / static_cast<double>(zs.size());
-}
-
-// Support box `b` (a table) much larger than box `a` and holding most of it: what `a` stands on or in
-// front of.
-bool holds_as_support(const Eigen::Vector4d& a, const Eigen::Vector4d& b, const MeasurementOptions& o) {
-  const double area_a = (a(2) - a(0)) * (a(3) - a(1)), area_b = (b(2) - b(0)) * (b(3) - b(1));
-  return area_a > 0 && box_intersection(a, b) / area_a > o.support_containment && area_b > o.support_area_ratio * area_a;
 }
 
 std::vector<std::vector<int>> nearer_overlapping_detections(const cv::Mat& depth, const std::vector<Eigen::Vector4d>& boxes,
@@ -811,10 +811,8 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
       // cup on its far half) cannot say which pixels are its own, and its whole box would hide what
       // stands on it: it hides nothing when the box shows hardly anything in front of its own depth
       // (measurement.support_front_share), else its whole box (a bed in front of a cabinet).
-      if (supports[static_cast<size_t>(j)] && !poses[static_cast<size_t>(j)] &&
-          holds_as_support(boxes[static_cast<size_t>(next)], boxes[static_cast<size_t>(j)], options.measurement) &&
-          box_front_share(depth, boxes[static_cast<size_t>(next)], options.measurement) <=
-              options.measurement.support_front_share)
+      if (supports[j] && !poses[j] && holds_as_support(boxes[next], boxes[j], options.measurement) &&
+          box_front_share(depth, boxes[next], options.measurement) <= options.measurement.support_front_share)
         continue;
       occluders.push_back({boxes[j], done[j] ? poses[j] : std::nullopt, labels[j] == labels[next],
                            options.box_masked_classes.count(labels[j]) > 0});

@@ -242,28 +242,28 @@ TEST(CliBadInput, MissingSequenceAndUnknownSettingsKey) {
   EXPECT_FALSE(fs::exists(root / "run"));
 }
 
+// A TUM fixture whose settings point detection.models_dir at a folder that does not exist (plus
+// `detection_keys`, indented under detection:); returns the --poses gt run command writing root/run.
+std::string run_with_absent_models(const fs::path& root, const std::string& detection_keys = "") {
+  make_tum(root);
+  const fs::path settings = root / "settings.yaml";
+  write_fixture_settings(settings, "RGBD.DepthMapFactor: 5000.0\ndetection:\n" + detection_keys + "  models_dir: " +
+                                       (root / "absent-models").string() + "\n");
+  return "run " + shq(root) + " --poses gt --settings " + shq(settings) + " --out " + shq(root / "run");
+}
+
 // Without --detector, a sequence without annotations.jsonl (a real recording) is detected by YOLOX:
 // its models are looked for.
 TEST(CliBadInput, ModelsFolderFromSettingsIsUsedAndChecked) {
   const fs::path root = scratch_dir();
-  make_tum(root);
-  const fs::path settings = root / "settings.yaml";
-  write_fixture_settings(settings, "RGBD.DepthMapFactor: 5000.0\ndetection:\n  models_dir: " +
-                                       (root / "absent-models").string() + "\n");
-  expect_one_line_error(wardmap_cli("run " + shq(root) + " --poses gt --settings " + shq(settings) +
-                                    " --out " + shq(root / "run")),
-                        "absent-models: models folder not found");
+  expect_one_line_error(wardmap_cli(run_with_absent_models(root)), "absent-models: models folder not found");
   EXPECT_FALSE(fs::exists(root / "run"));
 }
 
 // The settings' detection.kind chooses the detector when --detector does not; --detector wins.
 TEST(CliBadInput, DetectorKindFromSettingsUnlessTheFlagGivesOne) {
   const fs::path root = scratch_dir();
-  make_tum(root);
-  const fs::path settings = root / "settings.yaml";
-  write_fixture_settings(settings, "RGBD.DepthMapFactor: 5000.0\ndetection:\n  kind: annotations\n  models_dir: " +
-                                       (root / "absent-models").string() + "\n");
-  const std::string run = "run " + shq(root) + " --poses gt --settings " + shq(settings) + " --out " + shq(root / "run");
+  const std::string run = run_with_absent_models(root, "  kind: annotations\n");
   expect_one_line_error(wardmap_cli(run), "annotations.jsonl: cannot open the annotations");
   expect_one_line_error(wardmap_cli(run + " --detector yolox"), "absent-models: models folder not found");
   expect_one_line_error(wardmap_cli(run + " --set detection.kind=nanodet"), "absent-models: models folder not found");
