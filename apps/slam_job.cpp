@@ -103,6 +103,9 @@ double run_slam_job(const SlamJob& job) {
   if (!fs::exists(job.sequence)) throw InputError(job.sequence.string(), "sequence not found (no such file or folder)");
   auto reader = slam::io::open_sequence(job.sequence, job.reader);
   const auto& info = reader->info();
+  if (!info.notes.empty()) spdlog::info("{}: {}", job.sequence.string(), info.notes);
+  if (!info.ground_truth_unmatched.empty())
+    spdlog::warn("{}: {}; the run is not evaluated", job.sequence.string(), info.ground_truth_unmatched);
   fs::path settings_file = job.settings;
   if (settings_file.empty()) {
     settings_file = default_settings(info);

@@ -90,6 +90,7 @@ void run_info(const InfoArgs& a) {
   if (in.has_ground_truth)
     std::printf("ground truth:  yes (%zu of %zu frames, %zu poses)\n", in.frames_with_ground_truth, in.frame_count,
                 reader->ground_truth().size());
+  else if (!in.ground_truth_unmatched.empty()) std::printf("ground truth:  no (%s)\n", in.ground_truth_unmatched.c_str());
   else std::printf("ground truth:  no\n");
   if (!in.notes.empty()) std::printf("notes:         %s\n", in.notes.c_str());
   if (settings)
@@ -102,6 +103,8 @@ void run_info(const InfoArgs& a) {
                         {"depth", in.has_depth}, {"ground_truth", in.has_ground_truth},
                         {"frames_with_ground_truth", in.frames_with_ground_truth}, {"calibration", calib},
                         {"suggested_settings", suggestion}};
+    if (!in.ground_truth_unmatched.empty()) j["ground_truth_unmatched"] = in.ground_truth_unmatched;
+    if (!in.notes.empty()) j["notes"] = in.notes;
     if (settings) {
       j["settings"] = settings_file.string();
       j["settings_overrides"] = overrides_json(overrides);

@@ -1,6 +1,7 @@
 #include "slam/io/sequence.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
@@ -82,17 +83,27 @@ void SequenceReader::set_calibration(const PinholeCamera& camera, const std::str
 
 void SequenceReader::finish_opening() {
   if (entries_.empty()) throw InputError(info_.root.string(), "the sequence has no frames");
-  for (const Entry& e : entries_)
-    for (const fs::path* p : {&e.image, &e.depth}) {
-      if (p->empty() || fs::exists(*p)) continue;
-      if (!e.listed_in.empty()) throw InputError(e.listed_in.string(), "listed file '" + p->string() + "' not found", e.line);
-      throw InputError(p->string(), "file not found");
-    }
+  const auto check_exists = [](const fs::path& file, const fs::path& listed_in, long line) {
+    if (file.empty() || fs::exists(file)) return;
+    if (!listed_in.empty()) throw InputError(listed_in.string(), "listed file '" + file.string() + "' not found", line);
+    throw InputError(file.string(), "file not found");
+  };
+  for (const Entry& e : entries_) {
+    check_exists(e.image, e.listed_in, e.line);
+    check_exists(e.depth, e.depth_listed_in, e.depth_line);
+  }
   const cv::Mat first = load_image(entries_.front().image);
   info_.width = first.cols;
   info_.height = first.rows;
   info_.has_depth = !entries_.front().depth.empty();
   update_counts();
+  if (!ground_truth_.empty() && !info_.has_ground_truth) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "none of the ground truth's %zu poses (%.3f-%.3f s) falls on a frame (%.3f-%.3f s)",
+                  ground_truth_.size(), ground_truth_.timestamps.front(), ground_truth_.timestamps.back(),
+                  entries_.front().timestamp, entries_.back().timestamp);
+    info_.ground_truth_unmatched = buf;
+  }
 }
 
 void SequenceReader::update_counts() {
@@ -125,10 +136,8 @@ void SequenceReader::keep_frames(size_t first, size_t count) {
   ground_truth_ = std::move(gt);
   first_frame_ += first;
   update_counts();  // the nominal rate (info_.fps) stays
-  const std::string note = "frames " + std::to_string(first_frame_) + "-" +
-                           std::to_string(first_frame_ + entries_.size() - 1) + " of " +
-                           std::to_string(first_frame_ - first + total);
-  info_.notes = info_.notes.empty() ? note : info_.notes + "; " + note;
+  add_note("frames " + std::to_string(first_frame_) + "-" + std::to_string(first_frame_ + entries_.size() - 1) + " of " +
+           std::to_string(first_frame_ - first + total));
 }
 
 std::optional<size_t> nearest_within(const std::vector<double>& ts, double t, double max_dt) {

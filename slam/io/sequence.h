@@ -45,6 +45,9 @@ struct SequenceInfo {
   double depth_factor = 0;       // raw depth units per metre
   bool has_ground_truth = false;
   size_t frames_with_ground_truth = 0;
+  // Set when the dataset has a ground-truth file none of whose poses falls on a frame: why there is
+  // no evaluation (the pose and frame time spans), for `wardmap info` and a warning from `run`.
+  std::string ground_truth_unmatched;
   std::string notes;             // e.g. frames dropped by RGB/depth association
 };
 
@@ -98,10 +101,15 @@ class SequenceReader {
     std::optional<SE3> gt_pose;
     std::filesystem::path listed_in;  // index file naming this frame (rgb.txt, data.csv), if any
     long line = 0;                    // its line there
+    std::filesystem::path depth_listed_in;  // and the one naming its depth image (depth.txt)
+    long depth_line = 0;
   };
   // Checks that every listed image and depth file exists (naming the index file and line when one
-  // lists it), fills info_.width/height from the first image, duration, counts. Call last.
+  // lists it), fills info_.width/height from the first image, duration, counts, and
+  // info_.ground_truth_unmatched. Call last.
   void finish_opening();
+  // Appends to info_.notes ("; " between notes).
+  void add_note(const std::string& note) { info_.notes += (info_.notes.empty() ? "" : "; ") + note; }
   // frame_count, fps, duration and the ground-truth counts of info_ from entries_.
   void update_counts();
   // Attaches to each entry the ground-truth pose closest in time within max_dt.

@@ -50,6 +50,14 @@ PinholeCamera read_calib(const fs::path& file, const std::string& key, int width
   return cam;
 }
 
+// A KITTI image's frame number: its file name without extension, all digits (000123.png).
+size_t frame_number(const fs::path& image) {
+  const std::string stem = image.stem().string();
+  if (stem.empty() || stem.size() > 9 || !std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    throw InputError(image.string(), "KITTI images are named by their frame number (000123.png); give another layout with --format");
+  return std::stoul(stem);
+}
+
 class KittiReader : public SequenceReader {
  public:
   KittiReader(const fs::path& root, const ReaderOptions& o) {
@@ -61,11 +69,16 @@ class KittiReader : public SequenceReader {
     if (cam != "image_0" && cam != "image_2") throw InputError(seq.string(), "camera must be image_0 or image_2, got '" + cam + "'");
     const fs::path img_dir = seq / cam;
     if (!fs::is_directory(img_dir)) throw InputError(img_dir.string(), "image folder not found");
-    std::vector<fs::path> images;
+    // Frame n is image n's file name (000123.png), not its rank: a missing image must not shift the
+    // timestamps and poses of the frames after it.
+    std::vector<std::pair<size_t, fs::path>> images;
     for (const auto& e : fs::directory_iterator(img_dir))
-      if (e.is_regular_file() && e.path().extension() == ".png") images.push_back(e.path());
+      if (e.is_regular_file() && e.path().extension() == ".png") images.emplace_back(frame_number(e.path()), e.path());
     std::sort(images.begin(), images.end());
     if (images.empty()) throw InputError(img_dir.string(), "no .png images");
+    for (size_t i = 1; i < images.size(); ++i)
+      if (images[i].first == images[i - 1].first)
+        throw InputError(images[i].second.string(), "the same frame number as " + images[i - 1].second.filename().string());
 
     std::vector<double> times;
     const fs::path times_file = seq / "times.txt";
@@ -78,17 +91,21 @@ class KittiReader : public SequenceReader {
         previous = t;
         times.push_back(t);
       });
-      if (times.size() < images.size())
-        throw InputError(times_file.string(), "has " + std::to_string(times.size()) + " timestamps for " +
-                                                  std::to_string(images.size()) + " images");
+      if (times.size() <= images.back().first)
+        throw InputError(times_file.string(), "has " + std::to_string(times.size()) + " timestamps, and the images go up to " +
+                                                  images.back().second.filename().string());
     }
     info_.fps = 10.0;
-    for (size_t i = 0; i < images.size(); ++i) {
+    for (const auto& [n, path] : images) {
       Entry e;
-      e.timestamp = times.empty() ? static_cast<double>(i) / info_.fps : times[i];
-      e.image = images[i];
+      e.timestamp = times.empty() ? static_cast<double>(n) / info_.fps : times[n];
+      e.image = path;
       entries_.push_back(std::move(e));
     }
+    const size_t missing = images.back().first + 1 - images.size();
+    if (missing)
+      add_note(std::to_string(missing) + " of frames 0-" + std::to_string(images.back().first) + " have no image (" +
+               img_dir.string() + ")");
 
     // poses/XX.txt beside sequences/ (dataset root), or next to a lone sequence folder.
     const std::string id = seq.filename().string();
@@ -96,9 +113,13 @@ class KittiReader : public SequenceReader {
                               root / "poses" / (id + ".txt")}) {
       if (!fs::exists(p)) continue;
       const Trajectory poses = read_trajectory(p, PoseFormat::Kitti);
-      for (size_t i = 0; i < entries_.size() && i < poses.size(); ++i) {
-        entries_[i].gt_pose = poses.poses[i];
-        ground_truth_.push_back(entries_[i].timestamp, poses.poses[i]);
+      for (size_t i = 0; i < entries_.size() && images[i].first < poses.size(); ++i) {
+        entries_[i].gt_pose = poses.poses[images[i].first];
+        ground_truth_.push_back(entries_[i].timestamp, poses.poses[images[i].first]);
+      }
+      if (poses.size() <= images.back().first) {
+        add_note(p.string() + " has " + std::to_string(poses.size()) + " poses, for frames 0-" +
+                 std::to_string(images.back().first));
       }
       break;
     }

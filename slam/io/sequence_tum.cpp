@@ -61,10 +61,12 @@ class TumReader : public SequenceReader {
           continue;
         }
         e.depth = depth[*k].path;
+        e.depth_listed_in = root / "depth.txt";
+        e.depth_line = depth[*k].line;
       }
       entries_.push_back(std::move(e));
     }
-    if (dropped) info_.notes = std::to_string(dropped) + " colour frames without depth within " + std::to_string(o.max_dt) + " s dropped";
+    if (dropped) add_note(std::to_string(dropped) + " colour frames without depth within " + std::to_string(o.max_dt) + " s dropped");
     if (fs::exists(root / "groundtruth.txt")) {
       ground_truth_ = read_trajectory(root / "groundtruth.txt", PoseFormat::Tum);
       attach_ground_truth_by_time(o.max_dt);

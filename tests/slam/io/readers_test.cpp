@@ -85,6 +85,38 @@ TEST(KittiReader, WithoutTimesUsesTenHertz) {
   EXPECT_FALSE(r->info().calibration.has_value());
 }
 
+TEST(KittiReader, FramesAreNumberedByTheirFileNames) {
+  const fs::path root = scratch_dir();
+  test::make_kitti(root);
+  fs::remove(root / "sequences" / "05" / "image_0" / "000001.png");
+  auto r = open_sequence(root);
+  ASSERT_EQ(r->size(), 2u);
+  // Frame 2 keeps its own timestamp and pose, not frame 1's.
+  EXPECT_DOUBLE_EQ(r->timestamp(1), 0.2071);
+  EXPECT_EQ(r->read(1).image.at<uchar>(0, 0), 22);
+  ASSERT_TRUE(r->read(1).gt_pose);
+  EXPECT_DOUBLE_EQ(r->read(1).gt_pose->translation().z(), 3.0);
+  EXPECT_NE(r->info().notes.find("1 of frames 0-2 have no image"), std::string::npos) << r->info().notes;
+  // A pose file shorter than the frames: the frames past its end have no ground truth, and a note says so.
+  test::make_kitti(root);
+  write_text(root / "poses" / "05.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n1 0 0 0 0 1 0 0 0 0 1 1.5\n");
+  r = open_sequence(root);
+  EXPECT_EQ(r->info().frames_with_ground_truth, 2u);
+  EXPECT_NE(r->info().notes.find("05.txt has 2 poses, for frames 0-2"), std::string::npos) << r->info().notes;
+}
+
+TEST(TumReader, GroundTruthAtOtherTimesIsExplained) {
+  const fs::path root = scratch_dir();
+  test::make_tum(root);
+  write_text(root / "groundtruth.txt", "500.0 0 0 0 0 0 0 1\n500.1 1 0 0 0 0 0 1\n");
+  auto r = open_sequence(root);
+  EXPECT_FALSE(r->info().has_ground_truth);
+  EXPECT_EQ(r->info().ground_truth_unmatched,
+            "none of the ground truth's 2 poses (500.000-500.100 s) falls on a frame (1.000-1.100 s)");
+  test::make_tum(root);
+  EXPECT_EQ(open_sequence(root)->info().ground_truth_unmatched, "");
+}
+
 TEST(SevenScenesReader, DepthInMillimetresAndInvalidMarker) {
   const fs::path root = scratch_dir();
   test::make_seven_scenes(root);
@@ -258,6 +290,30 @@ TEST(BadInput, MissingImageNamesTheIndexLine) {
   const std::string e = error_of(root);
   EXPECT_NE(e.find("rgb.txt:7: listed file"), std::string::npos) << e;
   EXPECT_NE(e.find("3.png' not found"), std::string::npos) << e;
+}
+
+TEST(BadInput, MissingDepthNamesTheDepthIndexLine) {
+  const fs::path root = scratch_dir();
+  test::make_tum(root);
+  fs::remove(root / "depth" / "3.png");
+  const std::string e = error_of(root);
+  EXPECT_NE(e.find("depth.txt:7: listed file"), std::string::npos) << e;
+}
+
+TEST(BadInput, KittiImageNamesAndTimes) {
+  const fs::path root = scratch_dir();
+  test::make_kitti(root);
+  const fs::path images = root / "sequences" / "05" / "image_0";
+  test::write_image(images / "cover.png", 1, 64, 48, CV_8UC1);
+  EXPECT_NE(error_of(root).find("cover.png: KITTI images are named by their frame number"), std::string::npos)
+      << error_of(root);
+  fs::remove(images / "cover.png");
+  test::write_image(images / "02.png", 1, 64, 48, CV_8UC1);
+  EXPECT_NE(error_of(root).find("the same frame number as"), std::string::npos) << error_of(root);
+  fs::remove(images / "02.png");
+  test::write_image(images / "000004.png", 1, 64, 48, CV_8UC1);
+  EXPECT_NE(error_of(root).find("times.txt: has 3 timestamps, and the images go up to 000004.png"), std::string::npos)
+      << error_of(root);
 }
 
 TEST(BadInput, UnreadableImage) {
