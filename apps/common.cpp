@@ -1,22 +1,50 @@
 #include "apps/common.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 namespace wardmap::apps {
+
+CLI::Validator positive_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end != '\0') return "expected a number, got '" + text + "'";
+        if (!(v > 0) || !std::isfinite(v)) return "must be a number above 0, got " + text;
+        return {};
+      },
+      "POSITIVE");
+}
+
+CLI::Validator whole_number(unsigned long long min) {
+  return CLI::Validator(
+      [min](std::string& text) -> std::string {
+        const bool digits = !text.empty() && text.size() <= 19 &&
+                            std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+        if (!digits || std::stoull(text) < min)
+          return "expected a whole number" + (min ? " from " + std::to_string(min) : std::string()) + ", got '" + text + "'";
+        return {};
+      },
+      min ? ">=" + std::to_string(min) : "");
+}
 
 void add_reader_options(CLI::App* cmd, ReaderArgs& args) {
   cmd->add_option("--format", args.format, "Dataset kind instead of detecting it from the layout")
       ->check(CLI::IsMember({"tum", "kitti", "euroc", "7scenes", "folder", "video"}));
   cmd->add_option("--rate", args.rate, "Frame rate of an image folder (Hz)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--kitti-camera", args.kitti_camera, "KITTI camera folder: image_0 (default) or image_2")
       ->check(CLI::IsMember({"image_0", "image_2"}));
   cmd->add_option("--first-frame", args.first_frame,
                   "Start at this frame (0-based, among the frames `wardmap info` counts: a TUM colour frame without "
-                  "depth is not one); the frames keep their timestamps, and the ground truth is cut to the stretch");
+                  "depth is not one); the frames keep their timestamps, and the ground truth is cut to the stretch")
+      ->check(whole_number());
   cmd->add_option("--frames", args.frames, "Use at most this many frames (from --first-frame; default: to the end)")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_number(1));
 }
 
 slam::io::ReaderOptions reader_options(const ReaderArgs& args) {

@@ -12,6 +12,13 @@
 
 namespace wardmap::apps {
 
+// Checks of numeric options with a one-line message. CLI11 2.1's PositiveNumber prints its range
+// as "0.000000 to 1797693...": hundreds of digits; and an unsigned option takes "-1" as 2^64 - 1.
+// A number above zero (a rate, a time):
+CLI::Validator positive_number();
+// A whole number, digits only, at least `min` (frame counts and indices, seeds):
+CLI::Validator whole_number(unsigned long long min = 0);
+
 // How a command opens its sequences: --format, --rate, --kitti-camera, --first-frame, --frames.
 struct ReaderArgs {
   std::string format;        // empty: detected from the layout

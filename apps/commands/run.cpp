@@ -72,7 +72,8 @@ void add_semantic_options(CLI::App* cmd, SemanticJob& job) {
   cmd->add_flag("!--no-embedding", job.embedding, "Do not compute OSNet appearance embeddings");
   cmd->add_option_function<std::uint64_t>(
       "--seed", [&job](const std::uint64_t& seed) { job.seed = seed; },
-      "Seed of the detector noise and of the Gibbs sampler (default: detection.annotations.seed, and 1)");
+      "Seed of the detector noise and of the Gibbs sampler (default: detection.annotations.seed, and 1)")
+      ->check(whole_number());
 }
 
 void add_baseline_option(CLI::App* cmd, SemanticJob& job) {

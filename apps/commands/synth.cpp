@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "apps/common.h"
 #include "apps/progress.h"
 #include "sim/scenario.h"
 #include "sim/sequence.h"
@@ -67,9 +68,10 @@ void add_synth_command(CLI::App& app) {
   cmd->add_option("--seed", args->seed,
                   "Layout details: placement jitter, appearance variants, posters and texture detail; the same "
                   "scenario and seed give byte-identical files")
+      ->check(whole_number())
       ->capture_default_str();
   cmd->add_option("--frames", args->frames, "Render only the first N frames (0: the whole path)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(whole_number())
       ->capture_default_str();
   cmd->add_option("--width", args->width, "Image width in pixels (the focal length scales with it)")
       ->check(CLI::Range(32, 8192))

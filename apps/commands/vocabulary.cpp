@@ -100,8 +100,9 @@ void add_vocabulary_command(CLI::App& app) {
   cmd->add_option("--k", a->options.branching, "Branching factor: children per node")->capture_default_str();
   cmd->add_option("--levels", a->options.levels, "Depth of the tree (at most k^levels words)")->capture_default_str();
   cmd->add_option("--iterations", a->options.max_iterations, "k-majority rounds per node")->capture_default_str();
-  cmd->add_option("--every", a->every, "Use every N-th frame")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--every", a->every, "Use every N-th frame")->check(whole_number(1))->capture_default_str();
   cmd->add_option("--seed", a->seed, "Seed of the k-means++ seeding; the same inputs and seed give the same file")
+      ->check(whole_number())
       ->capture_default_str();
   add_reader_options(cmd, a->reader);
   cmd->callback([a]() { run_train(*a); });

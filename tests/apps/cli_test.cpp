@@ -68,6 +68,26 @@ TEST(Cli, InfoOnShared7Scenes) {
   EXPECT_NE(r.output.find("ground truth:  yes (600 of 600"), std::string::npos);
 }
 
+TEST(CliBadInput, NumericOptionsSayWhatIsWrongInOneLine) {
+  const fs::path root = scratch_dir();
+  make_tum(root);
+  // Before: a negative index or seed wrapped to 2^64 - 1 and ran; a negative count printed a
+  // range of hundreds of digits.
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"run " + shq(root) + " --out " + shq(root / "out") + " --first-frame -1",
+            "--first-frame: expected a whole number, got '-1'"},
+           {"run " + shq(root) + " --out " + shq(root / "out") + " --poses gt --seed -2",
+            "--seed: expected a whole number, got '-2'"},
+           {"run " + shq(root) + " --out " + shq(root / "out") + " --frames 0",
+            "--frames: expected a whole number from 1, got '0'"},
+           {"eval --gt " + shq(root) + " --est x --max-dt -1", "--max-dt: must be a number above 0, got -1"}}) {
+    const CliResult r = wardmap_cli(args);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_EQ(r.output.rfind(message + "\n", 0), 0u) << args << ": " << r.output;
+    EXPECT_FALSE(fs::exists(root / "out")) << args;
+  }
+}
+
 TEST(CliBadInput, MissingImage) {
   const fs::path root = scratch_dir();
   make_tum(root);
