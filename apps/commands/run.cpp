@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "apps/commands/commands.h"
 #include "apps/common.h"
@@ -28,11 +29,33 @@ struct RunArgs {
   std::vector<std::string> set;  // --set KEY=VALUE
 };
 
+// The run's files (objects.json, trajectory.txt, report.json, ...) must not overwrite a dataset's:
+// a synthetic sequence's objects.json is its object ground truth. --out may not be the sequence's
+// folder, nor a folder holding another dataset (an image folder only when it is the sequence).
+void refuse_out_over_a_dataset(const std::filesystem::path& out, const std::filesystem::path& sequence) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(out, ec)) return;
+  if (std::filesystem::equivalent(out, sequence, ec))
+    throw InputError(out.string(), "--out is the sequence's own folder; the run's files would overwrite the sequence's "
+                                   "(objects.json, ...): give another folder");
+  std::optional<slam::io::DatasetKind> kind;
+  try {
+    kind = slam::io::detect_dataset_kind(out);
+  } catch (const InputError&) {  // not a dataset
+  }
+  if (kind && *kind != slam::io::DatasetKind::ImageFolder)
+    throw InputError(out.string(), "--out holds a dataset (" + slam::io::to_string(*kind) +
+                                       " layout); the run's files would overwrite its own: give another folder");
+}
+
 void run(RunArgs& a) {
   a.job.reader = reader_options(a.reader);
   a.job.settings_overrides = parse_set_options(a.set);
   // Checked before the run, not when its outputs are written at the end.
-  if (!a.job.out.empty()) slam::io::check_output_folder(a.job.out, "--out");
+  if (!a.job.out.empty()) {
+    slam::io::check_output_folder(a.job.out, "--out");
+    refuse_out_over_a_dataset(a.job.out, a.job.sequence);
+  }
   if (a.poses == "slam") {
     spdlog::info("run: {} (SLAM front-process{})", a.job.sequence.string(), a.mode.empty() ? "" : ", " + a.mode);
     SlamJob s{a.job.sequence, a.job.settings, a.job.out, a.mode, a.job.progress, a.deterministic, a.vocabulary,

@@ -20,6 +20,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
+std::string read_all(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
 // The error is the last (and only) line on stderr, prefixed 'wardmap: error: '.
 void expect_one_line_error(const CliResult& r, const std::string& must_contain) {
   EXPECT_EQ(r.code, 2) << r.output;
@@ -86,6 +91,18 @@ TEST(CliBadInput, NumericOptionsSayWhatIsWrongInOneLine) {
     EXPECT_EQ(r.output.rfind(message + "\n", 0), 0u) << args << ": " << r.output;
     EXPECT_FALSE(fs::exists(root / "out")) << args;
   }
+}
+
+TEST(CliBadInput, OutOverADatasetIsRefused) {
+  const fs::path root = scratch_dir() / "tum", other = scratch_dir() / "7scenes";
+  make_tum(root);
+  make_seven_scenes(other);
+  write_text(root / "objects.json", "{}");  // a synthetic sequence's object ground truth
+  expect_one_line_error(wardmap_cli("run " + shq(root) + " --poses gt --out " + shq(root)),
+                        "--out is the sequence's own folder");
+  expect_one_line_error(wardmap_cli("run " + shq(other) + " --out " + shq(root)), "--out holds a dataset (TUM RGB-D layout)");
+  EXPECT_EQ(read_all(root / "objects.json"), "{}");
+  EXPECT_FALSE(fs::exists(root / "trajectory.txt"));
 }
 
 TEST(CliBadInput, MissingImage) {
@@ -244,8 +261,7 @@ TEST(CliBadInput, OutCannotBeMade) {
                         in_the_way);
   expect_one_line_error(wardmap_cli("vocabulary train " + shq(root) + " --out " + shq(root)),
                         "--out names a folder; it must be a file");
-  std::ifstream in(root / "out.txt");
-  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "not a folder");
+  EXPECT_EQ(read_all(root / "out.txt"), "not a folder");
 }
 
 // A mistyped sequence path is reported as missing, not as a missing calibration; a misspelt
@@ -369,8 +385,7 @@ TEST(CliPipeline, SlamThenObjectsOnASyntheticWard) {
   std::ifstream report_in(dir / "run" / "objects_report.json");
   const nlohmann::json report = nlohmann::json::parse(report_in);
   EXPECT_TRUE(report.at("baseline").at("objects").contains("association_accuracy")) << report.dump(2);
-  std::ifstream in(dir / "run" / "objects.json");
-  const std::string objects((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string objects = read_all(dir / "run" / "objects.json");
   EXPECT_NE(objects.find("\"class\": \"bed\""), std::string::npos) << objects;
   expect_upright_map_with_points(dir / "run");
 }
@@ -380,11 +395,6 @@ TEST(CliPipeline, SlamThenObjectsOnASyntheticWard) {
 
 namespace wardmap::test {
 namespace {
-
-std::string read_all(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
 
 double report_number(const fs::path& report, const std::string& key) {
   const std::string s = read_all(report);
