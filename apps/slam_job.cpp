@@ -214,6 +214,13 @@ double run_slam_job(const SlamJob& job) {
   }
 
   const slam::Trajectory traj = front.trajectory();
+  if (traj.empty() && processed > 0 && !interrupted)
+    spdlog::warn("{}: no frame was tracked: {}", job.sequence.string(),
+                 mode == "mono" ? "no two frames had the matches and parallax to initialise (tracking.init_*)"
+                                : "initialising needs " + std::to_string(options.tracking.min_init_points) +
+                                      " keypoints with a depth up to " + fmt::format("{:g}", options.tracking.max_depth) +
+                                      " m (tracking.min_init_points, tracking.max_depth): check the depth images and "
+                                      "RGBD.DepthMapFactor, or run --mode mono");
   json report = {{"sequence", job.sequence.string()}, {"mode", mode}, {"settings", settings_file.string()},
                  {"realtime", job.realtime},
                  {"frames", reader->size()}, {"frames_processed", processed}, {"frames_in_final_map", traj.size()}, {"submaps", front.submaps().size()},
@@ -275,7 +282,7 @@ double run_slam_job(const SlamJob& job) {
                   ms("local_ba"), ms("cull_keyframes"));
     md += buf;
   }
-  if (info.has_ground_truth && traj.size() >= 3) {
+  if (info.has_ground_truth && !stamps.empty()) {
     // An interrupted run is evaluated on the ground truth up to its last frame.
     slam::Trajectory gt;
     for (size_t k = 0; k < reader->ground_truth().size(); ++k)

@@ -316,6 +316,21 @@ TEST(CliBadInput, GroundTruthPosesNeedDepth) {
   EXPECT_FALSE(fs::exists(root / "run"));
 }
 
+// A run where no frame could be initialised says why, and its tracking rate is 0 % (before, it
+// wrote an empty trajectory and no rate at all).
+TEST(CliBadInput, RunWithoutATrackedFrameSaysWhy) {
+  const fs::path root = scratch_dir();
+  make_tum(root / "seq");  // 64x48 frames: far fewer than 300 keypoints with depth
+  write_fixture_settings(root / "settings.yaml", "RGBD.DepthMapFactor: 5000.0\n");
+  const CliResult r = wardmap_cli("run " + shq(root / "seq") + " --deterministic --settings " +
+                                  shq(root / "settings.yaml") + " --out " + shq(root / "run"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("no frame was tracked: initialising needs 300 keypoints with a depth up to 5 m"),
+            std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("tracking rate 0.0 %"), std::string::npos) << r.output;
+  EXPECT_NE(read_all(root / "run" / "report.json").find("\"tracking_rate\": 0.0"), std::string::npos);
+}
+
 TEST(CliBadInput, NoPartialOutputOnError) {
   const fs::path dir = scratch_dir();
   write_text(dir / "gt.txt", "1 0 0 0 0 0 0 1\n2 1 0 0 0 0 0 1\n3 2 0 0 0 0 0 1\n4 2 1 0 0 0 0 1\n");
