@@ -74,6 +74,26 @@ void log_tracking_event(const slam::FrameResult& r, std::string_view status, std
     spdlog::debug("frame {} ({:.3f} s): submap {} starts with the next frame", r.index, r.timestamp, r.submap + 1);
 }
 
+// A wrong depth factor (a TUM file's 5000 on a sensor that writes millimetres, ...) scales every
+// depth: said at the first depth image, rather than left to show as a failed or drifting run.
+void warn_if_depth_looks_off(const fs::path& sequence, const cv::Mat& depth, double factor, double max_depth) {
+  std::vector<float> valid;
+  for (int y = 0; y < depth.rows; y += 4)
+    for (int x = 0; x < depth.cols; x += 4)
+      if (const float d = depth.at<float>(y, x); d > 0) valid.push_back(d);
+  if (valid.size() * 100 < static_cast<size_t>(depth.total() / 16)) {
+    spdlog::warn("{}: under 1 % of the first depth image is valid", sequence.string());
+    return;
+  }
+  auto mid = valid.begin() + static_cast<std::ptrdiff_t>(valid.size() / 2);
+  std::nth_element(valid.begin(), mid, valid.end());
+  const double within = static_cast<double>(std::count_if(valid.begin(), valid.end(), [&](float d) { return d <= max_depth; })) / valid.size();
+  if (*mid < 0.3f || within < 0.2)
+    spdlog::warn("{}: the first depth image's median depth is {:.3g} m ({:.0f} % within tracking.max_depth {:g} m) with "
+                 "RGBD.DepthMapFactor {:g} (raw units per metre): check the factor (TUM 5000, millimetres 1000)",
+                 sequence.string(), *mid, 100 * within, max_depth, factor);
+}
+
 }  // namespace
 
 fs::path find_vocabulary(const fs::path& given) {
@@ -169,6 +189,8 @@ double run_slam_job(const SlamJob& job) {
     if ((interrupted = InterruptScope::requested())) break;
     progress.update(i + 1);
     const slam::io::Frame frame = frames.next();
+    if (i == 0 && !frame.depth.empty())
+      warn_if_depth_looks_off(job.sequence, frame.depth, reader->info().depth_factor, options.tracking.max_depth);
     if (job.realtime) {  // the frame is delivered at its own time, measured from the first one's
       if (!clock_start) clock_start.emplace(std::chrono::steady_clock::now(), frame.timestamp);
       std::this_thread::sleep_until(clock_start->first +

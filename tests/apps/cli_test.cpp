@@ -317,7 +317,8 @@ TEST(CliBadInput, GroundTruthPosesNeedDepth) {
 }
 
 // A run where no frame could be initialised says why, and its tracking rate is 0 % (before, it
-// wrote an empty trajectory and no rate at all).
+// wrote an empty trajectory and no rate at all); a depth factor that puts the first depth image
+// out of range is named.
 TEST(CliBadInput, RunWithoutATrackedFrameSaysWhy) {
   const fs::path root = scratch_dir();
   make_tum(root / "seq");  // 64x48 frames: far fewer than 300 keypoints with depth
@@ -329,6 +330,15 @@ TEST(CliBadInput, RunWithoutATrackedFrameSaysWhy) {
             std::string::npos) << r.output;
   EXPECT_NE(r.output.find("tracking rate 0.0 %"), std::string::npos) << r.output;
   EXPECT_NE(read_all(root / "run" / "report.json").find("\"tracking_rate\": 0.0"), std::string::npos);
+  EXPECT_EQ(r.output.find("median depth"), std::string::npos) << r.output;  // 1 m: plausible
+  // A wrong depth factor is named at the first depth image (5000 raw units read as 50 m).
+  const CliResult wrong = wardmap_cli("run " + shq(root / "seq") + " --deterministic --settings " +
+                                      shq(root / "settings.yaml") + " --set RGBD.DepthMapFactor=100 --out " +
+                                      shq(root / "run"));
+  ASSERT_EQ(wrong.code, 0) << wrong.output;
+  EXPECT_NE(wrong.output.find("the first depth image's median depth is 50 m (0 % within tracking.max_depth 5 m) with "
+                              "RGBD.DepthMapFactor 100"),
+            std::string::npos) << wrong.output;
 }
 
 TEST(CliBadInput, NoPartialOutputOnError) {
