@@ -69,8 +69,14 @@ Frame SequenceReader::read(size_t i) {
     throw InputError(e.image.string(), "image is " + std::to_string(f.image.cols) + "x" + std::to_string(f.image.rows) +
                                            ", the sequence's first image is " + std::to_string(info_.width) + "x" +
                                            std::to_string(info_.height));
-  if (decode_depth_ && !e.depth.empty())
+  if (decode_depth_ && !e.depth.empty()) {
     f.depth = load_depth(e.depth, info_.depth_factor, info_.kind == DatasetKind::SevenScenes ? 65535 : -1);
+    if (f.depth.size() != f.image.size())
+      throw InputError(e.depth.string(), "depth image is " + std::to_string(f.depth.cols) + "x" +
+                                             std::to_string(f.depth.rows) + ", its colour image " + e.image.filename().string() +
+                                             " is " + std::to_string(f.image.cols) + "x" + std::to_string(f.image.rows) +
+                                             " (registered depth of the colour image's size is needed)");
+  }
   f.gt_pose = e.gt_pose;
   return f;
 }

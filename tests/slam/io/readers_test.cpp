@@ -316,6 +316,21 @@ TEST(BadInput, KittiImageNamesAndTimes) {
       << error_of(root);
 }
 
+TEST(BadInput, DepthOfAnotherSizeThanItsImage) {
+  const fs::path root = scratch_dir();
+  test::make_tum(root);
+  test::write_depth(root / "depth" / "1.png", 5000, 32, 24);
+  auto r = open_sequence(root);
+  try {
+    r->read(1);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), (root / "depth" / "1.png").string() +
+                                         ": depth image is 32x24, its colour image 1.png is 64x48 (registered depth of "
+                                         "the colour image's size is needed)");
+  }
+}
+
 TEST(BadInput, UnreadableImage) {
   const fs::path root = scratch_dir();
   test::make_seven_scenes(root);
