@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "slam/core/errors.h"
+
 namespace wardmap::apps {
 
 CLI::Validator positive_number() {
@@ -29,6 +31,16 @@ CLI::Validator whole_number(unsigned long long min) {
         return {};
       },
       min ? ">=" + std::to_string(min) : "");
+}
+
+void require_run_files(const std::filesystem::path& run, const std::vector<std::string>& files) {
+  for (const std::string& f : files) {
+    if (std::filesystem::exists(run / f)) continue;
+    const bool slam_run = std::filesystem::exists(run / "trajectory.txt") && std::filesystem::exists(run / "frames.csv");
+    throw InputError((run / f).string(), slam_run ? "not found: the run was made without objects (wardmap run SEQ "
+                                                    "--objects, or --poses gt)"
+                                                  : "not found: is this a wardmap run folder?");
+  }
 }
 
 void add_reader_options(CLI::App* cmd, ReaderArgs& args) {

@@ -19,6 +19,10 @@ CLI::Validator positive_number();
 // A whole number, digits only, at least `min` (frame counts and indices, seeds):
 CLI::Validator whole_number(unsigned long long min = 0);
 
+// Throws InputError naming the first of `files` missing from the run folder `run`: a run folder
+// without objects (a SLAM run without --objects) is told so, any other folder is asked about.
+void require_run_files(const std::filesystem::path& run, const std::vector<std::string>& files);
+
 // How a command opens its sequences: --format, --rate, --kitti-camera, --first-frame, --frames.
 struct ReaderArgs {
   std::string format;        // empty: detected from the layout

@@ -50,8 +50,7 @@ struct EvalObjectsArgs {
 
 void eval_objects(const EvalObjectsArgs& a) {
   const fs::path run = a.run, seq = a.sequence;
-  for (const char* f : {"measurements.jsonl", "objects.json", "trajectory.txt"})
-    if (!fs::exists(run / f)) throw InputError((run / f).string(), "not found: is this a wardmap run folder?");
+  require_run_files(run, {"trajectory.txt", "measurements.jsonl", "objects.json"});
   require_object_ground_truth(seq);
   // A run of another sequence would be scored against the wrong objects without a word (the synthetic
   // sequences share their timestamps, so the trajectories still pair up).

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "apps/commands/commands.h"
+#include "apps/common.h"
 #include "semantics/render/map_render.h"
 #include "slam/core/errors.h"
 
@@ -22,8 +23,8 @@ struct RenderArgs {
 void render_map(const RenderArgs& a) {
   fs::path glb = a.input;
   if (fs::is_directory(glb)) {
+    require_run_files(glb, {"map.glb"});
     glb /= "map.glb";
-    if (!fs::exists(glb)) throw InputError(glb.string(), "not found: is this a wardmap run folder?");
   }
   // The file first (exit 2 on bad input), the display second.
   const semantics::MapScene scene = semantics::read_map_scene(glb);

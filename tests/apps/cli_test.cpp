@@ -341,6 +341,21 @@ TEST(CliBadInput, RunWithoutATrackedFrameSaysWhy) {
             std::string::npos) << wrong.output;
 }
 
+TEST(CliBadInput, ObjectCommandsOnARunWithoutObjects) {
+  const fs::path root = scratch_dir();
+  make_tum(root / "seq");
+  write_text(root / "seq" / "objects.json", "{\"objects\": []}");
+  write_text(root / "run" / "trajectory.txt", "1.0 0 0 0 0 0 0 1\n");
+  write_text(root / "run" / "frames.csv", "timestamp,status,submap\n1.000000,tracked,0\n");
+  const std::string without = "not found: the run was made without objects (wardmap run SEQ --objects, or --poses gt)";
+  expect_one_line_error(wardmap_cli("eval-objects --run " + shq(root / "run") + " --sequence " + shq(root / "seq")),
+                        "measurements.jsonl: " + without);
+  expect_one_line_error(wardmap_cli("render-map " + shq(root / "run") + " --out " + shq(root / "map.png")),
+                        "map.glb: " + without);
+  expect_one_line_error(wardmap_cli("render-map " + shq(root / "seq") + " --out " + shq(root / "map.png")),
+                        "map.glb: not found: is this a wardmap run folder?");
+}
+
 TEST(CliBadInput, NoPartialOutputOnError) {
   const fs::path dir = scratch_dir();
   write_text(dir / "gt.txt", "1 0 0 0 0 0 0 1\n2 1 0 0 0 0 0 1\n3 2 0 0 0 0 0 1\n4 2 1 0 0 0 0 1\n");
