@@ -186,13 +186,18 @@ DatasetKind detect_dataset_kind(const fs::path& path) {
   if (fs::exists(path / "mav0") || fs::exists(path / "cam0" / "data.csv")) return DatasetKind::Euroc;
   if (fs::exists(path / "sequences") || fs::exists(path / "image_0") || fs::exists(path / "image_2"))
     return DatasetKind::Kitti;
-  if (fs::exists(path / "frame-000000.color.png") || fs::exists(path / "frame-000000.color.jpg"))
-    return DatasetKind::SevenScenes;
-  for (const auto& e : fs::directory_iterator(path))
-    if (e.is_regular_file() && has_image_extension(e.path())) return DatasetKind::ImageFolder;
+  // 7-Scenes by any frame-NNNNNN.color.* (a stretch copied out need not start at frame 0).
+  bool images = false;
+  for (const auto& e : fs::directory_iterator(path)) {
+    if (!e.is_regular_file() || !has_image_extension(e.path())) continue;
+    const std::string name = e.path().filename().string();
+    if (name.rfind("frame-", 0) == 0 && name.find(".color.") != std::string::npos) return DatasetKind::SevenScenes;
+    images = true;
+  }
+  if (images) return DatasetKind::ImageFolder;
   throw InputError(path.string(),
                    "unknown layout: expected rgb.txt (TUM RGB-D), sequences/ or image_0/ (KITTI), mav0/ (EuRoC), "
-                   "frame-000000.color.* (7-Scenes), or a folder of images");
+                   "frame-NNNNNN.color.* (7-Scenes), or a folder of images");
 }
 
 std::unique_ptr<SequenceReader> open_sequence(const fs::path& path, const ReaderOptions& options) {

@@ -102,10 +102,9 @@ class KittiReader : public SequenceReader {
       e.image = path;
       entries_.push_back(std::move(e));
     }
-    const size_t missing = images.back().first + 1 - images.size();
-    if (missing)
-      add_note(std::to_string(missing) + " of frames 0-" + std::to_string(images.back().first) + " have no image (" +
-               img_dir.string() + ")");
+    if (const size_t gaps = images.back().first - images.front().first + 1 - images.size(); gaps > 0)
+      add_note(std::to_string(gaps) + " of frames " + std::to_string(images.front().first) + "-" +
+               std::to_string(images.back().first) + " have no image (" + img_dir.string() + ")");
 
     // poses/XX.txt beside sequences/ (dataset root), or next to a lone sequence folder.
     const std::string id = seq.filename().string();

@@ -132,6 +132,27 @@ TEST(SevenScenesReader, DepthInMillimetresAndInvalidMarker) {
   EXPECT_DOUBLE_EQ(r->info().calibration->fx, 585.0);
 }
 
+TEST(SevenScenesReader, FramesByNumberGapsAndStretchesCopiedOut) {
+  const fs::path root = scratch_dir();
+  test::make_seven_scenes(root);
+  for (const char* f : {"frame-000001.color.png", "frame-000001.depth.png", "frame-000001.pose.txt"})
+    fs::remove(root / f);
+  auto r = open_sequence(root);
+  ASSERT_EQ(r->size(), 2u);  // before: the reader stopped at the gap, keeping frame 0 alone
+  EXPECT_DOUBLE_EQ(r->timestamp(1), 2.0 / 30.0);
+  EXPECT_NEAR(r->read(1).gt_pose->translation().x(), 0.2, 1e-12);
+  EXPECT_NE(r->info().notes.find("1 of frames 0-2 have no colour image"), std::string::npos) << r->info().notes;
+  // Without frame 0 (a stretch copied out of a recording) it is still 7-Scenes, with its depth.
+  fs::remove(root / "frame-000000.color.png");
+  r = open_sequence(root);
+  EXPECT_EQ(r->info().kind, DatasetKind::SevenScenes);
+  ASSERT_EQ(r->size(), 1u);
+  EXPECT_TRUE(r->info().has_depth);
+  test::make_seven_scenes(root);
+  fs::remove(root / "frame-000002.pose.txt");
+  EXPECT_NE(open_sequence(root)->info().notes.find("1 frames without pose.txt"), std::string::npos);
+}
+
 TEST(EurocReader, CameraGroundTruthComposesBodyPoseWithExtrinsics) {
   const fs::path root = scratch_dir();
   test::make_euroc(root);
