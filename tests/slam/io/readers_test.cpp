@@ -304,21 +304,17 @@ TEST(BadInput, NonMonotonicTimestamp) {
   EXPECT_NE(e.find("rgb.txt:3: timestamp 1.05 is not after the previous one 1.1"), std::string::npos) << e;
 }
 
-TEST(BadInput, MissingImageNamesTheIndexLine) {
+TEST(BadInput, MissingImageOrDepthNamesItsIndexLine) {
   const fs::path root = scratch_dir();
   test::make_tum(root);
   fs::remove(root / "rgb" / "3.png");
-  const std::string e = error_of(root);
+  std::string e = error_of(root);
   EXPECT_NE(e.find("rgb.txt:7: listed file"), std::string::npos) << e;
   EXPECT_NE(e.find("3.png' not found"), std::string::npos) << e;
-}
-
-TEST(BadInput, MissingDepthNamesTheDepthIndexLine) {
-  const fs::path root = scratch_dir();
   test::make_tum(root);
   fs::remove(root / "depth" / "3.png");
-  const std::string e = error_of(root);
-  EXPECT_NE(e.find("depth.txt:7: listed file"), std::string::npos) << e;
+  e = error_of(root);
+  EXPECT_NE(e.find("depth.txt:7: listed file"), std::string::npos) << e;  // not rgb.txt's line
 }
 
 TEST(BadInput, KittiImageNamesAndTimes) {
