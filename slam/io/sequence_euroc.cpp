@@ -7,6 +7,7 @@
 #include "slam/core/errors.h"
 #include "slam/io/sequence.h"
 #include "slam/io/text_file.h"
+#include "slam/io/trajectory_io.h"
 
 namespace wardmap::slam::io {
 
@@ -63,7 +64,7 @@ class EurocReader : public SequenceReader {
         const auto m = yaml_numbers(y["T_BS"], sensor, "T_BS", 16);
         Eigen::Matrix4d T;
         for (int i = 0; i < 16; ++i) T(i / 4, i % 4) = m[i];
-        T_BS = SE3::from_matrix(T);
+        T_BS = checked_pose(T, sensor, 0);
       }
       if (y["intrinsics"] && y["resolution"]) {
         const auto k = yaml_numbers(y["intrinsics"], sensor, "intrinsics", 4);
@@ -92,7 +93,7 @@ class EurocReader : public SequenceReader {
         prev = t;
         double v[7];
         for (int i = 0; i < 7; ++i) v[i] = parse_double(tok[i + 1], gt, line, "pose value");
-        const SE3 T_WB(Eigen::Quaterniond(v[3], v[4], v[5], v[6]), Eigen::Vector3d(v[0], v[1], v[2]));
+        const SE3 T_WB = checked_pose(Eigen::Quaterniond(v[3], v[4], v[5], v[6]), {v[0], v[1], v[2]}, gt, line);
         ground_truth_.push_back(t, T_WB * T_BS);
       });
       attach_ground_truth_by_time(o.max_dt);

@@ -8,6 +8,7 @@
 #include "slam/core/errors.h"
 #include "slam/io/sequence.h"
 #include "slam/io/text_file.h"
+#include "slam/io/trajectory_io.h"
 
 namespace wardmap::slam::io {
 
@@ -57,10 +58,7 @@ class SevenScenesReader : public SequenceReader {
       e.image = path;
       if (const fs::path d = root / (std::string(stem) + "depth.png"); fs::exists(d)) e.depth = d;
       if (const fs::path p = root / (std::string(stem) + "pose.txt"); fs::exists(p)) {
-        const Eigen::Matrix4d T = read_matrix4(p);
-        const double det = T.topLeftCorner<3, 3>().determinant();
-        if (std::abs(det - 1.0) > 1e-2) throw InputError(p.string(), "rotation block is not a rotation (determinant " + std::to_string(det) + ")");
-        e.gt_pose = SE3::from_matrix(T);
+        e.gt_pose = checked_pose(read_matrix4(p), p, 0);
         ground_truth_.push_back(e.timestamp, *e.gt_pose);
       } else {
         ++without_pose;

@@ -18,6 +18,21 @@ PoseFormat parse_pose_format(const std::string& name) {
   throw std::invalid_argument("unknown pose format '" + name + "' (allowed: auto, tum, kitti)");
 }
 
+SE3 checked_pose(const Eigen::Quaterniond& q, const Eigen::Vector3d& t, const fs::path& file, long line) {
+  if (!(std::abs(q.norm() - 1.0) <= 1e-2))
+    throw InputError(file.string(), "quaternion is not unit length (norm " + std::to_string(q.norm()) + ")", line);
+  return SE3(q, t);  // normalised there
+}
+
+SE3 checked_pose(const Eigen::Matrix4d& T, const fs::path& file, long line) {
+  const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
+  const double det = R.determinant(), off = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  if (!(std::abs(det - 1.0) <= 1e-2 && off <= 1e-2))
+    throw InputError(file.string(), "rotation block is not a rotation (determinant " + std::to_string(det) +
+                                        ", R^T R off the identity by " + std::to_string(off) + ")", line);
+  return SE3::from_matrix(T);
+}
+
 Trajectory read_trajectory(const fs::path& file, PoseFormat format) {
   Trajectory traj;
   double previous = -std::numeric_limits<double>::infinity();
@@ -39,19 +54,13 @@ Trajectory read_trajectory(const fs::path& file, PoseFormat format) {
       for (int i = 0; i < 8; ++i) v[i] = parse_double(tok[i], file, line, "pose value");
       check_increasing(v[0], previous, file, line);
       previous = v[0];
-      const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
-      if (std::abs(q.norm() - 1.0) > 1e-2)
-        throw InputError(file.string(), "quaternion is not unit length (norm " + std::to_string(q.norm()) + ")", line);
-      traj.push_back(v[0], SE3(q, Eigen::Vector3d(v[1], v[2], v[3])));
+      traj.push_back(v[0], checked_pose(Eigen::Quaterniond(v[7], v[4], v[5], v[6]), {v[1], v[2], v[3]}, file, line));
     } else {
       if (tok.size() != 12)
         throw InputError(file.string(), "expected 12 values (row-major 3x4 pose), got " + std::to_string(tok.size()), line);
       Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
       for (int i = 0; i < 12; ++i) T(i / 4, i % 4) = parse_double(tok[i], file, line, "pose value");
-      const double det = T.topLeftCorner<3, 3>().determinant();
-      if (std::abs(det - 1.0) > 1e-2)
-        throw InputError(file.string(), "rotation block is not a rotation (determinant " + std::to_string(det) + ")", line);
-      traj.push_back(static_cast<double>(index++), SE3::from_matrix(T));
+      traj.push_back(static_cast<double>(index++), checked_pose(T, file, line));
     }
   });
   traj.indexed = (format == PoseFormat::Kitti);
