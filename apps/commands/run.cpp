@@ -1,10 +1,15 @@
 // wardmap run <sequence>: the SLAM front-process (--poses slam, the default), with the semantic layer on
 // its keyframes (--objects), or the semantic layer alone on ground-truth poses (--poses gt).
 #include <spdlog/spdlog.h>
+#include <sys/stat.h>
 
 #include <cstdio>
 #include <memory>
 #include <optional>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "apps/commands/commands.h"
 #include "apps/common.h"
@@ -48,6 +53,42 @@ void refuse_out_over_a_dataset(const std::filesystem::path& out, const std::file
                                        " layout); the run's files would overwrite its own: give another folder");
 }
 
+// The files a run may write into --out (slam_job.cpp, semantic_job.cpp). Those an earlier run left
+// there and this run does not write again (objects.json after a run without --objects, points.ply
+// after --poses gt) are removed once this run has written its own, so that the folder never mixes
+// two runs (eval-objects would score old objects on a new trajectory). A file counts as written
+// again when its inode or time changed: every output is written to a temporary name and renamed.
+class EarlierRunFiles {
+ public:
+  explicit EarlierRunFiles(const std::filesystem::path& out) : out_(out) {
+    if (out.empty()) return;
+    for (const char* name : {"trajectory.txt", "frames.csv", "timing.csv", "keyframes.txt", "points.ply", "report.json",
+                             "report.md", "objects.json", "measurements.jsonl", "map.glb", "objects_report.json",
+                             "objects_report.md"})
+      if (const auto id = identity(out / name)) found_.emplace_back(name, *id);
+  }
+  void remove_those_not_written_again() const {
+    std::string removed;
+    for (const auto& [name, id] : found_) {
+      std::error_code ec;
+      if (identity(out_ / name) == id && std::filesystem::remove(out_ / name, ec))
+        removed += (removed.empty() ? "" : ", ") + name;
+    }
+    if (!removed.empty())
+      spdlog::info("{}: removed {} of an earlier run, which this run does not write", out_.string(), removed);
+  }
+
+ private:
+  using Identity = std::tuple<dev_t, ino_t, long, long>;  // device, inode, modification time (s, ns)
+  static std::optional<Identity> identity(const std::filesystem::path& file) {
+    struct stat st {};
+    if (::stat(file.c_str(), &st) != 0) return std::nullopt;
+    return Identity{st.st_dev, st.st_ino, st.st_mtim.tv_sec, st.st_mtim.tv_nsec};
+  }
+  std::filesystem::path out_;
+  std::vector<std::pair<std::string, Identity>> found_;
+};
+
 void run(RunArgs& a) {
   a.job.reader = reader_options(a.reader);
   a.job.settings_overrides = parse_set_options(a.set);
@@ -56,6 +97,7 @@ void run(RunArgs& a) {
     slam::io::check_output_folder(a.job.out, "--out");
     refuse_out_over_a_dataset(a.job.out, a.job.sequence);
   }
+  const EarlierRunFiles earlier(a.job.out);
   if (a.poses == "slam") {
     spdlog::info("run: {} (SLAM front-process{})", a.job.sequence.string(), a.mode.empty() ? "" : ", " + a.mode);
     SlamJob s{a.job.sequence, a.job.settings, a.job.out, a.mode, a.job.progress, a.deterministic, a.vocabulary,
@@ -64,12 +106,14 @@ void run(RunArgs& a) {
     s.settings_overrides = a.job.settings_overrides;
     s.reader = a.job.reader;
     run_slam_job(s);
+    earlier.remove_those_not_written_again();
     return;
   }
   if (a.mode == "mono")
     throw InputError(a.job.sequence.string(), "--poses gt measures objects from depth: use --mode rgbd on a sequence with depth");
   spdlog::info("run: {} (poses: ground truth)", a.job.sequence.string());
   const SemanticRun r = run_semantic_job(a.job);
+  earlier.remove_those_not_written_again();
   std::printf("frames %d, keyframes %zu, groups %d, group objects %d, measurements %zu, landmarks %zu\n", r.frames,
               r.keyframes.size(), r.result.num_groups, r.result.num_group_objects, r.measurements.size(),
               r.result.landmarks.size());

@@ -356,6 +356,25 @@ TEST(CliBadInput, ObjectCommandsOnARunWithoutObjects) {
                         "map.glb: not found: is this a wardmap run folder?");
 }
 
+// A run into a folder holding an earlier run's files removes those it does not write again (the
+// objects of an earlier --objects run), once it has succeeded; a failed run leaves them.
+TEST(CliBadInput, EarlierRunFilesAreNotMixedIn) {
+  const fs::path root = scratch_dir();
+  make_tum(root / "seq");
+  write_fixture_settings(root / "settings.yaml", "RGBD.DepthMapFactor: 5000.0\n");
+  for (const char* f : {"objects.json", "map.glb", "trajectory.txt", "my-notes.txt"}) write_text(root / "run" / f, "old");
+  const std::string run = "run " + shq(root / "seq") + " --deterministic --out " + shq(root / "run") + " --settings ";
+  expect_one_line_error(wardmap_cli(run + shq(root / "absent.yaml")), "settings file not found");
+  EXPECT_EQ(read_all(root / "run" / "objects.json"), "old");
+  const CliResult r = wardmap_cli(run + shq(root / "settings.yaml"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("removed objects.json, map.glb of an earlier run"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(root / "run" / "objects.json"));
+  EXPECT_FALSE(fs::exists(root / "run" / "map.glb"));
+  EXPECT_NE(read_all(root / "run" / "trajectory.txt"), "old");  // written again: empty, nothing tracked
+  EXPECT_EQ(read_all(root / "run" / "my-notes.txt"), "old");     // not a wardmap file
+}
+
 TEST(CliBadInput, NoPartialOutputOnError) {
   const fs::path dir = scratch_dir();
   write_text(dir / "gt.txt", "1 0 0 0 0 0 0 1\n2 1 0 0 0 0 0 1\n3 2 0 0 0 0 0 1\n4 2 1 0 0 0 0 1\n");
