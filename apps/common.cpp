@@ -27,7 +27,8 @@ CLI::Validator whole_number(unsigned long long min) {
         const bool digits = !text.empty() && text.size() <= 19 &&
                             std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
         if (!digits || std::stoull(text) < min)
-          return "expected a whole number" + (min ? " from " + std::to_string(min) : std::string()) + ", got '" + text + "'";
+          return "expected a whole number" + (min ? " from " + std::to_string(min) : std::string()) + ", got '" + text +
+                 "'";
         return {};
       },
       min ? ">=" + std::to_string(min) : "");
@@ -36,7 +37,8 @@ CLI::Validator whole_number(unsigned long long min) {
 void require_run_files(const std::filesystem::path& run, const std::vector<std::string>& files) {
   for (const std::string& f : files) {
     if (std::filesystem::exists(run / f)) continue;
-    const bool slam_run = std::filesystem::exists(run / "trajectory.txt") && std::filesystem::exists(run / "frames.csv");
+    const bool slam_run =
+        std::filesystem::exists(run / "trajectory.txt") && std::filesystem::exists(run / "frames.csv");
     throw InputError((run / f).string(), slam_run ? "not found: the run was made without objects (wardmap run SEQ "
                                                     "--objects, or --poses gt)"
                                                   : "not found: is this a wardmap run folder?");

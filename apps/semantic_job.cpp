@@ -184,8 +184,9 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
   auto reader = slam::io::open_sequence(job.sequence, job.reader);
   const auto& info = reader->info();
   if (!job.keyframes && !info.has_ground_truth)
-    throw InputError(job.sequence.string(), "--poses gt needs ground-truth poses, and this sequence has none" +
-                                                (info.ground_truth_unmatched.empty() ? "" : ": " + info.ground_truth_unmatched));
+    throw InputError(job.sequence.string(),
+                     "--poses gt needs ground-truth poses, and this sequence has none" +
+                         (info.ground_truth_unmatched.empty() ? "" : ": " + info.ground_truth_unmatched));
   if (!job.keyframes && !info.has_depth)  // every measurement would go without a pose
     throw InputError(job.sequence.string(),
                      "--poses gt measures objects from depth images, and this sequence has none "

@@ -87,11 +87,14 @@ void warn_if_depth_looks_off(const fs::path& sequence, const cv::Mat& depth, dou
   }
   auto mid = valid.begin() + static_cast<std::ptrdiff_t>(valid.size() / 2);
   std::nth_element(valid.begin(), mid, valid.end());
-  const double within = static_cast<double>(std::count_if(valid.begin(), valid.end(), [&](float d) { return d <= max_depth; })) / valid.size();
+  const double within =
+      static_cast<double>(std::count_if(valid.begin(), valid.end(), [&](float d) { return d <= max_depth; })) /
+      valid.size();
   if (*mid < 0.3f || within < 0.2)
-    spdlog::warn("{}: the first depth image's median depth is {:.3g} m ({:.0f} % within tracking.max_depth {:g} m) with "
-                 "RGBD.DepthMapFactor {:g} (raw units per metre): check the factor (TUM 5000, millimetres 1000)",
-                 sequence.string(), *mid, 100 * within, max_depth, factor);
+    spdlog::warn(
+        "{}: the first depth image's median depth is {:.3g} m ({:.0f} % within tracking.max_depth {:g} m) with "
+        "RGBD.DepthMapFactor {:g} (raw units per metre): check the factor (TUM 5000, millimetres 1000)",
+        sequence.string(), *mid, 100 * within, max_depth, factor);
 }
 
 }  // namespace
@@ -238,11 +241,12 @@ double run_slam_job(const SlamJob& job) {
   const slam::Trajectory traj = front.trajectory();
   if (traj.empty() && processed > 0 && !interrupted)
     spdlog::warn("{}: no frame was tracked: {}", job.sequence.string(),
-                 mode == "mono" ? "no two frames had the matches and parallax to initialise (tracking.init_*)"
-                                : "initialising needs " + std::to_string(options.tracking.min_init_points) +
-                                      " keypoints with a depth up to " + fmt::format("{:g}", options.tracking.max_depth) +
-                                      " m (tracking.min_init_points, tracking.max_depth): check the depth images and "
-                                      "RGBD.DepthMapFactor, or run --mode mono");
+                 mode == "mono"
+                     ? "no two frames had the matches and parallax to initialise (tracking.init_*)"
+                     : "initialising needs " + std::to_string(options.tracking.min_init_points) +
+                           " keypoints with a depth up to " + fmt::format("{:g}", options.tracking.max_depth) +
+                           " m (tracking.min_init_points, tracking.max_depth): check the depth images and "
+                           "RGBD.DepthMapFactor, or run --mode mono");
   json report = {{"sequence", job.sequence.string()}, {"mode", mode}, {"settings", settings_file.string()},
                  {"realtime", job.realtime},
                  {"frames", reader->size()}, {"frames_processed", processed}, {"frames_in_final_map", traj.size()}, {"submaps", front.submaps().size()},

@@ -139,8 +139,12 @@ void add_eval_command(CLI::App& app) {
   cmd->add_option("--est", args->est, "Estimated trajectory: a TUM or KITTI pose file")->required();
   cmd->add_option("--align", args->align, "Alignment: sim3 (monocular), se3 (RGB-D, stereo) or none")->capture_default_str()
       ->check(CLI::IsMember({"sim3", "se3", "none"}));
-  cmd->add_option("--max-dt", args->max_dt, "Largest time difference for a pose pair (s)")->capture_default_str()->check(positive_number());
-  cmd->add_option("--rpe-delta", args->rpe_delta, "Frame gap of the relative pose error")->capture_default_str()->check(whole_number(1));
+  cmd->add_option("--max-dt", args->max_dt, "Largest time difference for a pose pair (s)")
+      ->capture_default_str()
+      ->check(positive_number());
+  cmd->add_option("--rpe-delta", args->rpe_delta, "Frame gap of the relative pose error")
+      ->capture_default_str()
+      ->check(whole_number(1));
   cmd->add_option("--est-format", args->est_format, "Format of the estimate file")->capture_default_str()
       ->check(CLI::IsMember({"auto", "tum", "kitti"}));
   cmd->add_option("--json", args->json, "Write the figures as JSON to this file");

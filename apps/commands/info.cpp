@@ -90,7 +90,8 @@ void run_info(const InfoArgs& a) {
   if (in.has_ground_truth)
     std::printf("ground truth:  yes (%zu of %zu frames, %zu poses)\n", in.frames_with_ground_truth, in.frame_count,
                 reader->ground_truth().size());
-  else if (!in.ground_truth_unmatched.empty()) std::printf("ground truth:  no (%s)\n", in.ground_truth_unmatched.c_str());
+  else if (!in.ground_truth_unmatched.empty())
+    std::printf("ground truth:  no (%s)\n", in.ground_truth_unmatched.c_str());
   else std::printf("ground truth:  no\n");
   if (!in.notes.empty()) std::printf("notes:         %s\n", in.notes.c_str());
   if (settings)

@@ -41,8 +41,9 @@ void refuse_out_over_a_dataset(const std::filesystem::path& out, const std::file
   std::error_code ec;
   if (!std::filesystem::is_directory(out, ec)) return;
   if (std::filesystem::equivalent(out, sequence, ec))
-    throw InputError(out.string(), "--out is the sequence's own folder; the run's files would overwrite the sequence's "
-                                   "(objects.json, ...): give another folder");
+    throw InputError(out.string(),
+                     "--out is the sequence's own folder; the run's files would overwrite the sequence's "
+                     "(objects.json, ...): give another folder");
   std::optional<slam::io::DatasetKind> kind;
   try {
     kind = slam::io::detect_dataset_kind(out);
@@ -62,9 +63,9 @@ class EarlierRunFiles {
  public:
   explicit EarlierRunFiles(const std::filesystem::path& out) : out_(out) {
     if (out.empty()) return;
-    for (const char* name : {"trajectory.txt", "frames.csv", "timing.csv", "keyframes.txt", "points.ply", "report.json",
-                             "report.md", "objects.json", "measurements.jsonl", "map.glb", "objects_report.json",
-                             "objects_report.md"})
+    for (const char* name :
+         {"trajectory.txt", "frames.csv", "timing.csv", "keyframes.txt", "points.ply", "report.json", "report.md",
+          "objects.json", "measurements.jsonl", "map.glb", "objects_report.json", "objects_report.md"})
       if (const auto id = identity(out / name)) found_.emplace_back(name, *id);
   }
   void remove_those_not_written_again() const {
@@ -138,8 +139,8 @@ void add_semantic_options(CLI::App* cmd, SemanticJob& job) {
   cmd->add_option("--models", job.models_dir, "Folder searched first for the ONNX weights (then $WARDMAP_MODELS, ../shared/models)");
   cmd->add_flag("!--no-embedding", job.embedding, "Do not compute OSNet appearance embeddings");
   cmd->add_option_function<std::uint64_t>(
-      "--seed", [&job](const std::uint64_t& seed) { job.seed = seed; },
-      "Seed of the detector noise and of the Gibbs sampler (default: detection.annotations.seed, and 1)")
+         "--seed", [&job](const std::uint64_t& seed) { job.seed = seed; },
+         "Seed of the detector noise and of the Gibbs sampler (default: detection.annotations.seed, and 1)")
       ->check(whole_number());
 }
 

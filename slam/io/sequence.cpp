@@ -73,8 +73,9 @@ Frame SequenceReader::read(size_t i) {
     f.depth = load_depth(e.depth, info_.depth_factor, info_.kind == DatasetKind::SevenScenes ? 65535 : -1);
     if (f.depth.size() != f.image.size())
       throw InputError(e.depth.string(), "depth image is " + std::to_string(f.depth.cols) + "x" +
-                                             std::to_string(f.depth.rows) + ", its colour image " + e.image.filename().string() +
-                                             " is " + std::to_string(f.image.cols) + "x" + std::to_string(f.image.rows) +
+                                             std::to_string(f.depth.rows) + ", its colour image " +
+                                             e.image.filename().string() + " is " + std::to_string(f.image.cols) + "x" +
+                                             std::to_string(f.image.rows) +
                                              " (registered depth of the colour image's size is needed)");
   }
   f.gt_pose = e.gt_pose;
@@ -142,8 +143,8 @@ void SequenceReader::keep_frames(size_t first, size_t count) {
   ground_truth_ = std::move(gt);
   first_frame_ += first;
   update_counts();  // the nominal rate (info_.fps) stays
-  add_note("frames " + std::to_string(first_frame_) + "-" + std::to_string(first_frame_ + entries_.size() - 1) + " of " +
-           std::to_string(first_frame_ - first + total));
+  add_note("frames " + std::to_string(first_frame_) + "-" + std::to_string(first_frame_ + entries_.size() - 1) +
+           " of " + std::to_string(first_frame_ - first + total));
 }
 
 std::optional<size_t> nearest_within(const std::vector<double>& ts, double t, double max_dt) {

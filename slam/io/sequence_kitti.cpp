@@ -53,8 +53,10 @@ PinholeCamera read_calib(const fs::path& file, const std::string& key, int width
 // A KITTI image's frame number: its file name without extension, all digits (000123.png).
 size_t frame_number(const fs::path& image) {
   const std::string stem = image.stem().string();
-  if (stem.empty() || stem.size() > 9 || !std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; }))
-    throw InputError(image.string(), "KITTI images are named by their frame number (000123.png); give another layout with --format");
+  if (stem.empty() || stem.size() > 9 ||
+      !std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    throw InputError(image.string(),
+                     "KITTI images are named by their frame number (000123.png); give another layout with --format");
   return std::stoul(stem);
 }
 
@@ -78,7 +80,8 @@ class KittiReader : public SequenceReader {
     if (images.empty()) throw InputError(img_dir.string(), "no .png images");
     for (size_t i = 1; i < images.size(); ++i)
       if (images[i].first == images[i - 1].first)
-        throw InputError(images[i].second.string(), "the same frame number as " + images[i - 1].second.filename().string());
+        throw InputError(images[i].second.string(),
+                         "the same frame number as " + images[i - 1].second.filename().string());
 
     std::vector<double> times;
     const fs::path times_file = seq / "times.txt";
@@ -92,7 +95,8 @@ class KittiReader : public SequenceReader {
         times.push_back(t);
       });
       if (times.size() <= images.back().first)
-        throw InputError(times_file.string(), "has " + std::to_string(times.size()) + " timestamps, and the images go up to " +
+        throw InputError(times_file.string(), "has " + std::to_string(times.size()) +
+                                                  " timestamps, and the images go up to " +
                                                   images.back().second.filename().string());
     }
     info_.fps = 10.0;

@@ -69,7 +69,8 @@ class SevenScenesReader : public SequenceReader {
       if (const int gaps = colour.back().first - colour.front().first + 1 - static_cast<int>(colour.size()); gaps > 0)
         add_note(std::to_string(gaps) + " of frames " + std::to_string(colour.front().first) + "-" +
                  std::to_string(colour.back().first) + " have no colour image");
-    if (without_pose && without_pose < colour.size()) add_note(std::to_string(without_pose) + " frames without pose.txt");
+    if (without_pose && without_pose < colour.size())
+      add_note(std::to_string(without_pose) + " frames without pose.txt");
     finish_opening();
     // Frames without depth in a sequence that has it elsewhere would silently change the mode.
     for (const Entry& e : entries_)

@@ -66,7 +66,9 @@ class TumReader : public SequenceReader {
       }
       entries_.push_back(std::move(e));
     }
-    if (dropped) add_note(std::to_string(dropped) + " colour frames without depth within " + std::to_string(o.max_dt) + " s dropped");
+    if (dropped)
+      add_note(std::to_string(dropped) + " colour frames without depth within " + std::to_string(o.max_dt) +
+               " s dropped");
     if (fs::exists(root / "groundtruth.txt")) {
       ground_truth_ = read_trajectory(root / "groundtruth.txt", PoseFormat::Tum);
       attach_ground_truth_by_time(o.max_dt);

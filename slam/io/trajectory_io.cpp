@@ -28,8 +28,10 @@ SE3 checked_pose(const Eigen::Matrix4d& T, const fs::path& file, long line) {
   const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
   const double det = R.determinant(), off = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
   if (!(std::abs(det - 1.0) <= 1e-2 && off <= 1e-2))
-    throw InputError(file.string(), "rotation block is not a rotation (determinant " + std::to_string(det) +
-                                        ", R^T R off the identity by " + std::to_string(off) + ")", line);
+    throw InputError(file.string(),
+                     "rotation block is not a rotation (determinant " + std::to_string(det) +
+                         ", R^T R off the identity by " + std::to_string(off) + ")",
+                     line);
   return SE3::from_matrix(T);
 }
 

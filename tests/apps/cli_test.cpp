@@ -100,7 +100,8 @@ TEST(CliBadInput, OutOverADatasetIsRefused) {
   write_text(root / "objects.json", "{}");  // a synthetic sequence's object ground truth
   expect_one_line_error(wardmap_cli("run " + shq(root) + " --poses gt --out " + shq(root)),
                         "--out is the sequence's own folder");
-  expect_one_line_error(wardmap_cli("run " + shq(other) + " --out " + shq(root)), "--out holds a dataset (TUM RGB-D layout)");
+  expect_one_line_error(wardmap_cli("run " + shq(other) + " --out " + shq(root)),
+                        "--out holds a dataset (TUM RGB-D layout)");
   EXPECT_EQ(read_all(root / "objects.json"), "{}");
   EXPECT_FALSE(fs::exists(root / "trajectory.txt"));
 }
@@ -327,18 +328,20 @@ TEST(CliBadInput, RunWithoutATrackedFrameSaysWhy) {
                                   shq(root / "settings.yaml") + " --out " + shq(root / "run"));
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("no frame was tracked: initialising needs 300 keypoints with a depth up to 5 m"),
-            std::string::npos) << r.output;
+            std::string::npos)
+      << r.output;
   EXPECT_NE(r.output.find("tracking rate 0.0 %"), std::string::npos) << r.output;
   EXPECT_NE(read_all(root / "run" / "report.json").find("\"tracking_rate\": 0.0"), std::string::npos);
   EXPECT_EQ(r.output.find("median depth"), std::string::npos) << r.output;  // 1 m: plausible
   // A wrong depth factor is named at the first depth image (5000 raw units read as 50 m).
-  const CliResult wrong = wardmap_cli("run " + shq(root / "seq") + " --deterministic --settings " +
-                                      shq(root / "settings.yaml") + " --set RGBD.DepthMapFactor=100 --out " +
-                                      shq(root / "run"));
+  const CliResult wrong =
+      wardmap_cli("run " + shq(root / "seq") + " --deterministic --settings " + shq(root / "settings.yaml") +
+                  " --set RGBD.DepthMapFactor=100 --out " + shq(root / "run"));
   ASSERT_EQ(wrong.code, 0) << wrong.output;
   EXPECT_NE(wrong.output.find("the first depth image's median depth is 50 m (0 % within tracking.max_depth 5 m) with "
                               "RGBD.DepthMapFactor 100"),
-            std::string::npos) << wrong.output;
+            std::string::npos)
+      << wrong.output;
 }
 
 TEST(CliBadInput, ObjectCommandsOnARunWithoutObjects) {
@@ -362,7 +365,8 @@ TEST(CliBadInput, EarlierRunFilesAreNotMixedIn) {
   const fs::path root = scratch_dir();
   make_tum(root / "seq");
   write_fixture_settings(root / "settings.yaml", "RGBD.DepthMapFactor: 5000.0\n");
-  for (const char* f : {"objects.json", "map.glb", "trajectory.txt", "my-notes.txt"}) write_text(root / "run" / f, "old");
+  for (const char* f : {"objects.json", "map.glb", "trajectory.txt", "my-notes.txt"})
+    write_text(root / "run" / f, "old");
   const std::string run = "run " + shq(root / "seq") + " --deterministic --out " + shq(root / "run") + " --settings ";
   expect_one_line_error(wardmap_cli(run + shq(root / "absent.yaml")), "settings file not found");
   EXPECT_EQ(read_all(root / "run" / "objects.json"), "old");
@@ -372,7 +376,7 @@ TEST(CliBadInput, EarlierRunFilesAreNotMixedIn) {
   EXPECT_FALSE(fs::exists(root / "run" / "objects.json"));
   EXPECT_FALSE(fs::exists(root / "run" / "map.glb"));
   EXPECT_NE(read_all(root / "run" / "trajectory.txt"), "old");  // written again: empty, nothing tracked
-  EXPECT_EQ(read_all(root / "run" / "my-notes.txt"), "old");     // not a wardmap file
+  EXPECT_EQ(read_all(root / "run" / "my-notes.txt"), "old");    // not a wardmap file
 }
 
 TEST(CliBadInput, NoPartialOutputOnError) {

@@ -353,7 +353,8 @@ TEST(BadInput, PosesThatAreNotRotations) {
   test::make_seven_scenes(root / "7scenes");  // a shear passes a determinant test alone
   write_text(root / "7scenes" / "frame-000001.pose.txt", "1 0.5 0 0\n0 1 0 0\n0 0 1 0\n0 0 0 1\n");
   EXPECT_NE(error_of(root / "7scenes").find("frame-000001.pose.txt: rotation block is not a rotation (determinant 1.0"),
-            std::string::npos) << error_of(root / "7scenes");
+            std::string::npos)
+      << error_of(root / "7scenes");
   test::make_euroc(root / "euroc");
   write_text(root / "euroc" / "mav0" / "state_groundtruth_estimate0" / "data.csv",
              "#timestamp,p_x,p_y,p_z,q_w,q_x,q_y,q_z\n1403636579763555584,0,0,0,0,0,0,0\n");
