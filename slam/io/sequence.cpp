@@ -113,6 +113,18 @@ void SequenceReader::finish_opening() {
   }
 }
 
+void SequenceReader::sort_numbered_images(NumberedImages& images, const std::string& what) {
+  std::sort(images.begin(), images.end());
+  for (size_t i = 1; i < images.size(); ++i)
+    if (images[i].first == images[i - 1].first)
+      throw InputError(images[i].second.string(),
+                       "the same frame number as " + images[i - 1].second.filename().string());
+  if (images.empty()) return;
+  if (const size_t gaps = images.back().first - images.front().first + 1 - images.size(); gaps > 0)
+    add_note(std::to_string(gaps) + " of frames " + std::to_string(images.front().first) + "-" +
+             std::to_string(images.back().first) + " have no " + what);
+}
+
 void SequenceReader::update_counts() {
   info_.frame_count = entries_.size();
   const double span = entries_.back().timestamp - entries_.front().timestamp;
@@ -187,15 +199,14 @@ DatasetKind detect_dataset_kind(const fs::path& path) {
   if (fs::exists(path / "mav0") || fs::exists(path / "cam0" / "data.csv")) return DatasetKind::Euroc;
   if (fs::exists(path / "sequences") || fs::exists(path / "image_0") || fs::exists(path / "image_2"))
     return DatasetKind::Kitti;
-  // 7-Scenes by any frame-NNNNNN.color.* (a stretch copied out need not start at frame 0).
-  bool images = false;
+  // 7-Scenes by its images' names, frame-NNNNNN.color.* (a stretch copied out need not start at frame 0).
   for (const auto& e : fs::directory_iterator(path)) {
     if (!e.is_regular_file() || !has_image_extension(e.path())) continue;
     const std::string name = e.path().filename().string();
-    if (name.rfind("frame-", 0) == 0 && name.find(".color.") != std::string::npos) return DatasetKind::SevenScenes;
-    images = true;
+    const bool seven_scenes = name.rfind("frame-", 0) == 0 &&
+                              (name.find(".color.") != std::string::npos || name.find(".depth.") != std::string::npos);
+    return seven_scenes ? DatasetKind::SevenScenes : DatasetKind::ImageFolder;
   }
-  if (images) return DatasetKind::ImageFolder;
   throw InputError(path.string(),
                    "unknown layout: expected rgb.txt (TUM RGB-D), sequences/ or image_0/ (KITTI), mav0/ (EuRoC), "
                    "frame-NNNNNN.color.* (7-Scenes), or a folder of images");

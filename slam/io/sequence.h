@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -108,6 +109,11 @@ class SequenceReader {
   // lists it), fills info_.width/height from the first image, duration, counts, and
   // info_.ground_truth_unmatched. Call last.
   void finish_opening();
+  // Images named by their frame number (KITTI's 000123.png, 7-Scenes' frame-000123.color.png),
+  // sorted here by number: two with one number are an error; the numbers missing between the first
+  // and the last are noted ("3 of frames 0-99 have no <what>"), not taken for the end.
+  using NumberedImages = std::vector<std::pair<size_t, std::filesystem::path>>;
+  void sort_numbered_images(NumberedImages& images, const std::string& what);
   // Appends to info_.notes ("; " between notes).
   void add_note(const std::string& note) { info_.notes += (info_.notes.empty() ? "" : "; ") + note; }
   // frame_count, fps, duration and the ground-truth counts of info_ from entries_.

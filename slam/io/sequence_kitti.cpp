@@ -73,15 +73,11 @@ class KittiReader : public SequenceReader {
     if (!fs::is_directory(img_dir)) throw InputError(img_dir.string(), "image folder not found");
     // Frame n is image n's file name (000123.png), not its rank: a missing image must not shift the
     // timestamps and poses of the frames after it.
-    std::vector<std::pair<size_t, fs::path>> images;
+    NumberedImages images;
     for (const auto& e : fs::directory_iterator(img_dir))
       if (e.is_regular_file() && e.path().extension() == ".png") images.emplace_back(frame_number(e.path()), e.path());
-    std::sort(images.begin(), images.end());
     if (images.empty()) throw InputError(img_dir.string(), "no .png images");
-    for (size_t i = 1; i < images.size(); ++i)
-      if (images[i].first == images[i - 1].first)
-        throw InputError(images[i].second.string(),
-                         "the same frame number as " + images[i - 1].second.filename().string());
+    sort_numbered_images(images, "image (" + img_dir.string() + ")");
 
     std::vector<double> times;
     const fs::path times_file = seq / "times.txt";
@@ -106,9 +102,6 @@ class KittiReader : public SequenceReader {
       e.image = path;
       entries_.push_back(std::move(e));
     }
-    if (const size_t gaps = images.back().first - images.front().first + 1 - images.size(); gaps > 0)
-      add_note(std::to_string(gaps) + " of frames " + std::to_string(images.front().first) + "-" +
-               std::to_string(images.back().first) + " have no image (" + img_dir.string() + ")");
 
     // poses/XX.txt beside sequences/ (dataset root), or next to a lone sequence folder.
     const std::string id = seq.filename().string();

@@ -1,9 +1,6 @@
 // Microsoft 7-Scenes: frame-NNNNNN.color.(jpg|png), frame-NNNNNN.depth.png (uint16 mm, 65535 invalid),
 // frame-NNNNNN.pose.txt (4x4 camera-to-world); 30 Hz, frame N has timestamp N / 30 s.
-#include <algorithm>
 #include <cstdio>
-#include <utility>
-#include <vector>
 
 #include "slam/core/errors.h"
 #include "slam/io/sequence.h"
@@ -37,22 +34,19 @@ class SevenScenesReader : public SequenceReader {
     info_.fps = 30.0;
     info_.depth_factor = 1000.0;  // millimetres; ReaderOptions::depth_factor overrides it (open_sequence)
     // Frame N is frame-NNNNNN: found by name, so a missing number is a gap (reported), not the end.
-    std::vector<std::pair<int, fs::path>> colour;
+    NumberedImages colour;
     for (const auto& f : fs::directory_iterator(root)) {
       int n = -1, used = 0;
       const std::string name = f.path().filename().string();
       if (std::sscanf(name.c_str(), "frame-%d.color.%n", &n, &used) == 1 && used > 0 && n >= 0 &&
           (name.substr(static_cast<size_t>(used)) == "png" || name.substr(static_cast<size_t>(used)) == "jpg"))
-        colour.emplace_back(n, f.path());
+        colour.emplace_back(static_cast<size_t>(n), f.path());
     }
-    std::sort(colour.begin(), colour.end());
-    for (size_t i = 1; i < colour.size(); ++i)
-      if (colour[i].first == colour[i - 1].first)
-        throw InputError(colour[i].second.string(), "the same frame as " + colour[i - 1].second.filename().string());
+    sort_numbered_images(colour, "colour image");
     size_t without_pose = 0;
     char stem[64];
     for (const auto& [n, path] : colour) {
-      std::snprintf(stem, sizeof stem, "frame-%06d.", n);
+      std::snprintf(stem, sizeof stem, "frame-%06zu.", n);
       Entry e;
       e.timestamp = n / info_.fps;
       e.image = path;
@@ -65,10 +59,6 @@ class SevenScenesReader : public SequenceReader {
       }
       entries_.push_back(std::move(e));
     }
-    if (!colour.empty())
-      if (const int gaps = colour.back().first - colour.front().first + 1 - static_cast<int>(colour.size()); gaps > 0)
-        add_note(std::to_string(gaps) + " of frames " + std::to_string(colour.front().first) + "-" +
-                 std::to_string(colour.back().first) + " have no colour image");
     if (without_pose && without_pose < colour.size())
       add_note(std::to_string(without_pose) + " frames without pose.txt");
     finish_opening();
