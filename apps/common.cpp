@@ -4,6 +4,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <mutex>
+#include <set>
+
+#include <spdlog/spdlog.h>
 
 #include "slam/core/errors.h"
 
@@ -116,6 +120,14 @@ std::string scale_drift_text(const slam::eval::ScaleDriftResult& drift) {
   else
     std::snprintf(buf, sizeof buf, "n/a (needs timestamps and 3 windows of %.0f s that move)", drift.window_seconds);
   return buf;
+}
+
+void warn_settings_notes(const slam::io::Settings& settings) {
+  static std::mutex mutex;
+  static std::set<std::string> warned;
+  const std::lock_guard<std::mutex> lock(mutex);
+  for (const std::string& note : settings.notes)
+    if (warned.insert(note).second) spdlog::warn("{}", note);
 }
 
 }  // namespace wardmap::apps

@@ -42,6 +42,9 @@ nlohmann::json scale_drift_json(const slam::eval::ScaleDriftResult& drift);
 void add_set_option(CLI::App* cmd, std::vector<std::string>& texts, const std::string& use);
 // The --set texts parsed (slam::io::parse_setting_override), in order.
 std::vector<slam::io::SettingOverride> parse_set_options(const std::vector<std::string>& texts);
+// Logs a warning for each of the settings' notes (keys not read that look meant), each once per
+// process: a SLAM run with --objects and `compare` read one file more than once.
+void warn_settings_notes(const slam::io::Settings& settings);
 
 // The --set overrides of a run, for report.json ("KEY=VALUE" strings, in order) and report.md
 // (", with --set KEY=VALUE, ..." after the settings file's name; empty without overrides).

@@ -124,6 +124,7 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
   if (!job.settings.empty())
     slam::io::blame_overrides(job.settings_overrides,
                               [&] { settings = slam::io::load_settings(job.settings, job.settings_overrides); });
+  if (settings) warn_settings_notes(*settings);
   // The semantics and detection sections: the file's, else those --set alone gives (the camera is
   // then the dataset's, so only those sections' keys may be set).
   YAML::Node sections = settings ? settings->root : YAML::Node(YAML::NodeType::Map);

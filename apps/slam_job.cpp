@@ -143,6 +143,7 @@ double run_slam_job(const SlamJob& job) {
     settings = slam::io::load_settings(settings_file, job.settings_overrides);
     options = slam::load_front_options(settings);
   });
+  warn_settings_notes(settings);
   if (settings.camera.depth_map_factor) reader->set_depth_factor(*settings.camera.depth_map_factor);
   const std::string mode = job.mode.empty() ? (info.has_depth ? "rgbd" : "mono") : job.mode;
   if (mode == "rgbd" && !info.has_depth)

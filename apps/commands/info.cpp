@@ -95,8 +95,11 @@ void run_info(const InfoArgs& a) {
   else std::printf("ground truth:  no\n");
   if (!in.notes.empty()) std::printf("notes:         %s\n", in.notes.c_str());
   if (settings)
-    std::printf("settings:      %s%s: valid (camera, tracking, mapping, semantics, detection)\n",
-                settings_file.c_str(), overrides_text(overrides).c_str());
+    std::printf("settings:      %s%s: valid (camera, tracking, mapping, semantics, detection)%s\n",
+                settings_file.c_str(), overrides_text(overrides).c_str(),
+                settings->notes.empty() ? "" : ", but ignores:");
+  if (settings)
+    for (const std::string& note : settings->notes) std::printf("               %s\n", note.c_str());
 
   if (!a.json.empty()) {
     nlohmann::json j = {{"kind", slam::io::to_string(in.kind)}, {"path", in.root.string()}, {"frames", in.frame_count},
@@ -109,6 +112,7 @@ void run_info(const InfoArgs& a) {
     if (settings) {
       j["settings"] = settings_file.string();
       j["settings_overrides"] = overrides_json(overrides);
+      j["settings_notes"] = settings->notes;
     }
     slam::io::write_file_atomic(a.json, j.dump(2) + "\n");
   }

@@ -114,10 +114,19 @@ FrontOptions load_front_options(const io::Settings& settings) {
   read_option(r, "", "ORBextractor.iniThFAST", o.orb.ini_th_fast, f);
   read_option(r, "", "ORBextractor.minThFAST", o.orb.min_th_fast, f);
 
-  // ORB-SLAM3's RGB-D keys: the virtual baseline and the close-depth threshold (b x ThDepth).
-  double baseline = 0, th_depth = 0;
-  read_option(r, "", "Stereo.b", baseline, f);
-  read_option(r, "", "Stereo.ThDepth", th_depth, f);
+  // ORB-SLAM3's RGB-D keys: the virtual baseline and the close-depth threshold (b x ThDepth); or
+  // ORB-SLAM2's, the baseline times fx (Camera.bf) and ThDepth. 0 when absent.
+  const auto positive = [&](const char* key) {
+    double value = 0;
+    read_option(r, "", key, value, f);
+    if (r[key] && !(value > 0))
+      throw InputError(f.string(), std::string("key '") + key + "': must be positive, got " + std::to_string(value),
+                       r[key].Mark().line + 1);
+    return value;
+  };
+  double baseline = positive("Stereo.b");
+  if (!r["Stereo.b"] && r["Camera.bf"]) baseline = positive("Camera.bf") / settings.camera.camera.fx;
+  const double th_depth = positive(r["Stereo.ThDepth"] ? "Stereo.ThDepth" : "ThDepth");
   if (baseline > 0) o.tracking.virtual_baseline = baseline;
   if (baseline > 0 && th_depth > 0) o.tracking.close_depth = baseline * th_depth;
 

@@ -1,6 +1,7 @@
 #include "slam/io/settings.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -99,7 +100,11 @@ const char* const kTopLevelKeys[] = {
     "Camera1.p2", "Camera1.k3", "Camera.fx", "Camera.fy", "Camera.cx", "Camera.cy", "Camera.k1", "Camera.k2",
     "Camera.p1", "Camera.p2", "Camera.k3", "Camera.width", "Camera.height", "Camera.fps", "Camera.RGB",
     "RGBD.DepthMapFactor", "DepthMapFactor", "ORBextractor.nFeatures", "ORBextractor.scaleFactor",
-    "ORBextractor.nLevels", "ORBextractor.iniThFAST", "ORBextractor.minThFAST", "Stereo.b", "Stereo.ThDepth"};
+    "ORBextractor.nLevels", "ORBextractor.iniThFAST", "ORBextractor.minThFAST", "Stereo.b", "Stereo.ThDepth",
+    "Camera.bf", "ThDepth"};
+
+// ORB-SLAM3 keys wardmap does not read that are one letter from a key it does: not misspellings.
+const char* const kNotMisspellings[] = {"Camera1.k4", "Camera.k4"};
 
 // Keys read under two names, the first taken when a file has both (ORB-SLAM3's Camera1.fx over
 // ORB-SLAM2's Camera.fx).
@@ -125,11 +130,12 @@ size_t edit_distance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
-// The known key closest to `key` within a third of its length (at least 3 edits), else "".
+// The known key closest to `key` within `max_distance` edits (default: a third of its length, at
+// least 3), else "".
 template <class Keys>
-std::string closest_key(const std::string& key, const Keys& known) {
+std::string closest_key(const std::string& key, const Keys& known, size_t max_distance = 0) {
   std::string best;
-  size_t best_distance = std::max<size_t>(3, key.size() / 3) + 1;
+  size_t best_distance = (max_distance > 0 ? max_distance : std::max<size_t>(3, key.size() / 3)) + 1;
   for (const auto& k : known) {
     const size_t d = edit_distance(key, k);
     if (d < best_distance) {
@@ -280,6 +286,47 @@ void check_calibration_size(const PinholeCamera& camera, int width, int height, 
                                std::to_string(height));
 }
 
+namespace {
+
+// Settings::notes for the top-level keys not read that look meant to change something, and an
+// error for a mapping named like one of wardmap's sections ("Tracking:", "trackingg:"), whose keys
+// would all be ignored. ORB-SLAM3's other keys (Viewer.*, IMU.*, matrices) pass without a word.
+std::vector<std::string> unread_key_notes(const YAML::Node& root, const CameraSettings& c, const fs::path& file) {
+  std::vector<std::string> notes;
+  bool second_camera = false;
+  for (const auto& kv : root) {
+    if (!kv.first.IsScalar()) continue;
+    const std::string key = kv.first.Scalar();
+    const auto listed = [&](const auto& keys) {
+      return std::find(std::begin(keys), std::end(keys), key) != std::end(keys);
+    };
+    if (listed(kTopLevelKeys) || listed(kSections) || listed(kNotMisspellings)) continue;
+    const int line = kv.first.Mark().line + 1;
+    const std::string at = file.string() + (line > 0 ? ":" + std::to_string(line) : "") + ": key '" + key + "'";
+    const auto number = [&] { return kv.second.IsScalar() ? std::strtod(kv.second.Scalar().c_str(), nullptr) : 0.0; };
+    if (key.rfind("Camera2.", 0) == 0) {
+      if (!second_camera)
+        notes.push_back(at + ": a stereo rig's second camera (Camera2.*) is not read; wardmap runs monocular or RGB-D "
+                             "on Camera1");
+      second_camera = true;
+    } else if ((key == "Camera.imageScale" && number() != 1) || (key == "Camera.newWidth" && number() != c.camera.width) ||
+               (key == "Camera.newHeight" && number() != c.camera.height)) {
+      notes.push_back(at + ": ORB-SLAM3 resizes the images by it; wardmap does not read it and tracks the images at "
+                           "their own size with Camera1's calibration");
+    } else if (kv.second.IsMap()) {
+      const std::string section = kv.second["data"] ? "" : closest_key(key, kSections);  // "data": an OpenCV matrix
+      if (!section.empty())
+        throw InputError(file.string(), "key '" + key + "': not a section wardmap reads (did you mean '" + section +
+                                            "'?); its keys would all be ignored", line);
+    } else if (const std::string best = closest_key(key, kTopLevelKeys, 2); !best.empty()) {
+      notes.push_back(at + ": not a key wardmap reads, so it changes nothing (did you mean '" + best + "'?)");
+    }
+  }
+  return notes;
+}
+
+}  // namespace
+
 Settings parse_settings(const std::string& text, const fs::path& file, const std::vector<SettingOverride>& overrides) {
   Settings s;
   s.file = file;
@@ -324,6 +371,7 @@ Settings parse_settings(const std::string& text, const fs::path& file, const std
     if (!(factor > 0)) throw InputError(file.string(), "key 'RGBD.DepthMapFactor': must be positive, got " + std::to_string(factor));
     c.depth_map_factor = factor;
   }
+  s.notes = unread_key_notes(r, c, file);
   return s;
 }
 

@@ -27,6 +27,10 @@ struct Settings {
   std::filesystem::path file;
   CameraSettings camera;
   YAML::Node root;  // the whole document, for the modules' own sections
+  // Top-level keys that look meant to change something but are not read: a misspelling of a key
+  // wardmap reads, an ORB-SLAM3 key of processing wardmap does not do (a resized image, a stereo
+  // rig's second camera). Each names its key and line; a run logs them as warnings.
+  std::vector<std::string> notes;
   // A wardmap section (e.g. "tracking"); an undefined node when absent.
   YAML::Node section(const std::string& name) const { return root[name]; }
 };

@@ -78,6 +78,25 @@ TEST(FrontOptions, OrbSlamStereoKeysSetTheVirtualBaselineAndCloseDepth) {
   EXPECT_DOUBLE_EQ(p.tracking.virtual_baseline, 0.1);
 }
 
+TEST(FrontOptions, OrbSlam2StereoKeysToo) {
+  // ORB-SLAM2's TUM1.yaml: Camera.bf is the baseline times fx.
+  const FrontOptions o =
+      load_front_options(io::parse_settings(std::string(kBase) + "Camera.bf: 40.0\nThDepth: 40.0\n", "t.yaml"));
+  EXPECT_DOUBLE_EQ(o.tracking.virtual_baseline, 0.08);
+  EXPECT_NEAR(o.tracking.close_depth, 3.2, 1e-12);
+  const auto error_of = [](const std::string& extra) {
+    try {
+      load_front_options(io::parse_settings(std::string(kBase) + extra, "t.yaml"));
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_EQ(error_of("Stereo.b: -0.08\n"), "t.yaml:8: key 'Stereo.b': must be positive, got -0.080000");
+  EXPECT_EQ(error_of("Camera.bf: 0\n"), "t.yaml:8: key 'Camera.bf': must be positive, got 0.000000");
+  EXPECT_EQ(error_of("Stereo.b: 0.08\nThDepth: -1\n"), "t.yaml:9: key 'ThDepth': must be positive, got -1.000000");
+}
+
 TEST(FrontOptions, InvalidValuesNameTheKey) {
   const auto expect_error = [](const std::string& extra, const std::string& key) {
     try {

@@ -63,6 +63,40 @@ TEST(Settings, OrbSlam2KeysToo) {
   EXPECT_DOUBLE_EQ(*s.camera.depth_map_factor, 1000);
 }
 
+// The notes of a minimal valid file with `extra` appended (its first line is line 7).
+std::vector<std::string> notes_of(const std::string& extra) {
+  return parse_settings("Camera1.fx: 500\nCamera1.fy: 500\nCamera1.cx: 320\nCamera1.cy: 240\nCamera.width: 640\n"
+                        "Camera.height: 480\n" + extra, "s.yaml")
+      .notes;
+}
+
+TEST(Settings, UnreadKeysThatLookMeantAreNoted) {
+  EXPECT_EQ(notes_of("ORBextractor.nFeature: 1500\n"),
+            std::vector<std::string>{"s.yaml:7: key 'ORBextractor.nFeature': not a key wardmap reads, so it changes "
+                                     "nothing (did you mean 'ORBextractor.nFeatures'?)"});
+  EXPECT_EQ(notes_of("Camera2.fx: 500\nCamera2.fy: 500\n"),
+            std::vector<std::string>{"s.yaml:7: key 'Camera2.fx': a stereo rig's second camera (Camera2.*) is not read; "
+                                     "wardmap runs monocular or RGB-D on Camera1"});
+  EXPECT_EQ(notes_of("Camera.imageScale: 0.5\n").size(), 1u);
+  EXPECT_EQ(notes_of("Camera.newWidth: 600\n").size(), 1u);
+  // ORB-SLAM3's keys that change nothing here, or are ORB-SLAM2's names of keys read: no note.
+  EXPECT_EQ(notes_of("Camera.imageScale: 1.0\nCamera.newWidth: 640\nViewer.PointSize: 2\nCamera1.k4: 0\n"
+                     "File.version: \"1.0\"\nIMU.Frequency: 200\nCamera.bf: 40\nThDepth: 40\n"
+                     "Tbc: !!opencv-matrix\n  rows: 1\n  cols: 1\n  dt: f\n  data: [1]\n"),
+            std::vector<std::string>{});
+  EXPECT_TRUE(parse_settings(kOrbSlam3, "TUM1.yaml").notes.empty());
+  // A section written otherwise would have all its keys ignored: an error.
+  std::string error;
+  try {
+    notes_of("Tracking:\n  max_depth: 3\n");
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  EXPECT_EQ(error,
+            "s.yaml:7: key 'Tracking': not a section wardmap reads (did you mean 'tracking'?); its keys would all be "
+            "ignored");
+}
+
 TEST(Settings, ErrorsNameTheKey) {
   EXPECT_EQ(error_of("Camera1.fy: 1\nCamera1.cx: 1\nCamera1.cy: 1\n"), "s.yaml: missing key 'Camera1.fx' (camera calibration)");
   EXPECT_EQ(error_of("Camera1.fx: abc\n"), "s.yaml:1: key 'Camera1.fx': expected a number, got 'abc'");
