@@ -37,10 +37,13 @@ DatasetKind parse_dataset_kind(const std::string& name) {
   throw std::invalid_argument("unknown format '" + name + "' (allowed: tum, kitti, euroc, 7scenes, folder, video)");
 }
 
-cv::Mat load_image(const fs::path& file) {
+cv::Mat load_image(const fs::path& file, bool beside_depth) {
   if (!fs::exists(file)) throw InputError(file.string(), "image file not found");
   cv::Mat img = cv::imread(file.string(), cv::IMREAD_UNCHANGED);
   if (img.empty()) throw InputError(file.string(), "cannot decode the image (corrupt or not an image)");
+  if (beside_depth && img.type() == CV_16UC1)
+    throw InputError(file.string(), "a 16-bit single-channel image where the colour image is expected (a depth "
+                                    "image listed as colour?)");
   if (img.depth() == CV_16U) img.convertTo(img, CV_8U, 1.0 / 256);
   if (img.depth() != CV_8U) throw InputError(file.string(), "unsupported pixel type (expected 8 or 16 bit)");
   if (img.channels() == 4) cv::cvtColor(img, img, cv::COLOR_BGRA2BGR);
@@ -64,7 +67,7 @@ Frame SequenceReader::read(size_t i) {
   f.index = i;
   f.timestamp = e.timestamp;
   f.image_path = e.image;
-  f.image = load_image(e.image);
+  f.image = load_image(e.image, !e.depth.empty());
   if (f.image.cols != info_.width || f.image.rows != info_.height)
     throw InputError(e.image.string(), "image is " + std::to_string(f.image.cols) + "x" + std::to_string(f.image.rows) +
                                            ", the sequence's first image is " + std::to_string(info_.width) + "x" +
@@ -99,7 +102,7 @@ void SequenceReader::finish_opening() {
     check_exists(e.image, e.listed_in, e.line);
     check_exists(e.depth, e.depth_listed_in, e.depth_line);
   }
-  const cv::Mat first = load_image(entries_.front().image);
+  const cv::Mat first = load_image(entries_.front().image, !entries_.front().depth.empty());
   info_.width = first.cols;
   info_.height = first.rows;
   info_.has_depth = !entries_.front().depth.empty();

@@ -144,8 +144,10 @@ std::unique_ptr<SequenceReader> open_video(const std::filesystem::path& file, co
 // Index of the value of `sorted` closest to t, when within max_dt (TUM's association rule).
 std::optional<size_t> nearest_within(const std::vector<double>& sorted, double t, double max_dt);
 
-// Shared by the readers: a readable image or an InputError naming it.
-cv::Mat load_image(const std::filesystem::path& file);
+// Shared by the readers: a readable image (8-bit, grey or BGR) or an InputError naming it. With
+// `beside_depth` (a colour image of an RGB-D frame), a 16-bit single-channel image is an error: it
+// is a depth image, read as dim grey otherwise.
+cv::Mat load_image(const std::filesystem::path& file, bool beside_depth = false);
 // uint16 depth PNG to metres (0 = invalid); `invalid` raw values (e.g. 65535) are zeroed too.
 cv::Mat load_depth(const std::filesystem::path& file, double factor, int invalid = -1);
 

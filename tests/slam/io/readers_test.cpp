@@ -348,6 +348,24 @@ TEST(BadInput, DepthOfAnotherSizeThanItsImage) {
   }
 }
 
+TEST(BadInput, DepthImageListedAsColour) {
+  const fs::path root = scratch_dir();
+  test::make_tum(root);
+  test::write_depth(root / "rgb" / "1.png", 5000);
+  auto r = open_sequence(root);
+  try {
+    r->read(1);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), (root / "rgb" / "1.png").string() +
+                                         ": a 16-bit single-channel image where the colour image is expected (a depth "
+                                         "image listed as colour?)");
+  }
+  // Without depth beside it, a 16-bit grey image is a camera's own (read at 8 bits).
+  test::write_depth(root / "folder" / "0.png", 5000);
+  EXPECT_EQ(open_sequence(root / "folder")->read(0).image.type(), CV_8UC1);
+}
+
 TEST(BadInput, PosesThatAreNotRotations) {
   const fs::path root = scratch_dir();
   test::make_seven_scenes(root / "7scenes");  // a shear passes a determinant test alone
