@@ -40,6 +40,7 @@ json read_report(const fs::path& file) {
 }
 
 void require_object_ground_truth(const fs::path& seq) {
+  if (!fs::is_directory(seq)) throw InputError(seq.string(), fs::exists(seq) ? "not a sequence folder" : "not found");
   for (const char* f : {"objects.json", "annotations.jsonl"})
     if (!fs::exists(seq / f)) throw InputError((seq / f).string(), "not found: object ground truth comes from wardmap synth sequences");
 }

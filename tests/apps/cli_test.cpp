@@ -862,6 +862,8 @@ TEST(CliObjects, EvalObjectsAndCompare) {
   const CliResult mixed = wardmap_cli("-q compare " + shq(dir / "ward") + " " + shq(dir / "tum") + " --no-embedding");
   expect_one_line_error(mixed, "tum/objects.json: not found");
   EXPECT_EQ(mixed.output.find("Object_GT"), std::string::npos) << "table started before the check:\n" << mixed.output;
+  expect_one_line_error(wardmap_cli("-q compare " + shq(dir / "ward") + " " + shq(dir / "nosuch") + " --no-embedding"),
+                        "nosuch: not found");
 
   const CliResult table =
       wardmap_cli("-q compare " + shq(dir / "ward") + " --no-embedding --json " + shq(dir / "compare.json"));
