@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <opencv2/imgproc.hpp>
 #include <string>
@@ -40,7 +41,11 @@ void run_train(const TrainArgs& a) {
   try {
     a.options.validate();
   } catch (const std::invalid_argument& e) {
-    throw CLI::ValidationError("vocabulary train", e.what());
+    std::string message = e.what();  // named by the options' keys; this command sets them by flags
+    for (const auto& [key, flag] : {std::pair{"place.branching", "--k"}, {"place.levels", "--levels"},
+                                    {"place.max_iterations", "--iterations"}})
+      for (size_t at; (at = message.find(key)) != std::string::npos;) message.replace(at, std::strlen(key), flag);
+    throw CLI::ValidationError(message);
   }
   // Checked before the features and the training, not when the file is written at the end.
   slam::io::check_output_file(a.out, "--out");

@@ -85,7 +85,9 @@ TEST(CliBadInput, NumericOptionsSayWhatIsWrongInOneLine) {
             "--seed: expected a whole number, got '-2'"},
            {"run " + shq(root) + " --out " + shq(root / "out") + " --frames 0",
             "--frames: expected a whole number from 1, got '0'"},
-           {"eval --gt " + shq(root) + " --est x --max-dt -1", "--max-dt: must be a number above 0, got -1"}}) {
+           {"eval --gt " + shq(root) + " --est x --max-dt -1", "--max-dt: must be a number above 0, got -1"},
+           // Before: named by a settings key that no settings file has (place.branching).
+           {"vocabulary train " + shq(root) + " --out " + shq(root / "out") + " --k 1", "--k must be in [2, 64], got 1"}}) {
     const CliResult r = wardmap_cli(args);
     EXPECT_EQ(r.code, 2) << args;
     EXPECT_EQ(r.output.rfind(message + "\n", 0), 0u) << args << ": " << r.output;
