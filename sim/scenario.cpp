@@ -149,6 +149,17 @@ const std::vector<std::string> kWallTextures = {"paint", "speckle", "plain", "ti
 const std::vector<std::string> kFloorTextures = {"tiles", "lino", "plain"};
 const std::vector<std::string> kChallengeKinds = {"blur", "textureless", "dark", "fast-turn"};
 
+// Objects stand, and the camera moves, over the floor's rectangle.
+bool on_floor(const Scenario& s, const Eigen::Vector2d& xy) {
+  return (xy.array() >= s.floor_min.array()).all() && (xy.array() <= s.floor_max.array()).all();
+}
+
+std::string floor_text(const Scenario& s) {
+  std::ostringstream t;
+  t << "x " << s.floor_min.x() << " to " << s.floor_max.x() << ", y " << s.floor_min.y() << " to " << s.floor_max.y();
+  return t.str();
+}
+
 void parse_structure(const Reader& top, Scenario& s, const std::string& file) {
   const Reader st(file, top.required("structure"), "structure");
   st.allow_only({"floor", "ceiling_height", "walls"});
@@ -191,6 +202,7 @@ void parse_objects(const Reader& top, Scenario& s, const std::string& file) {
     spec.cls = static_cast<ObjectClass>(std::find(object_class_names().begin(), object_class_names().end(), cls) -
                                         object_class_names().begin());
     spec.at = o.vector("at", 2, 2, -1000, 1000);
+    if (!on_floor(s, spec.at)) o.fail(o.get("at"), path + ".at", "outside the floor (" + floor_text(s) + ")");
     spec.elevation = o.number("elevation", 0.0, 0.0, 3.0);
     spec.yaw_deg = o.number("yaw_deg", 0.0, -720, 720);
     spec.count = o.integer("count", 1, 1, 50);
@@ -217,6 +229,11 @@ void parse_path(const Reader& top, Scenario& s, const std::string& file) {
     WaypointSpec spec;
     const Eigen::VectorXd pos = w.vector("position", 2, 3, -1000, 1000);
     spec.position = Eigen::Vector3d(pos[0], pos[1], pos.size() == 3 ? pos[2] : default_z);
+    if (!on_floor(s, spec.position.head<2>()) || !(spec.position.z() > 0 && spec.position.z() < s.ceiling_height)) {
+      std::ostringstream room;
+      room << "outside the room (" << floor_text(s) << ", z 0 to " << s.ceiling_height << ")";
+      w.fail(w.get("position"), path + ".position", room.str());
+    }
     if (w.has("look_at")) {
       if (w.has("yaw_deg") || w.has("pitch_deg"))
         w.fail(w.get("look_at"), path + ".look_at", "give either look_at or yaw_deg/pitch_deg, not both");

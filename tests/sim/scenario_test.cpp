@@ -89,6 +89,14 @@ TEST(Scenario, ErrorsNameTheKey) {
   EXPECT_NE(error_of(with("CLASS", "door, variant: 7")).find("'objects[3].variant': value 7 out of range [-1, 2]"),
             std::string::npos);
   EXPECT_NE(error_of("name: [unclosed").find("YAML syntax error"), std::string::npos);
+  // Before: an object or a waypoint off the floor rendered a sequence without it in view, or from
+  // outside the walls.
+  EXPECT_EQ(error_of(with("at: [2, 1]", "at: [20, 1]")),
+            "test.yaml:9: key 'objects[1].at': outside the floor (x 0 to 4, y 0 to 3)");
+  std::string high = with("CLASS", "cabinet");
+  high.replace(high.find("[3.0, 1.5]"), 10, "[3.0, 1.5, 3.0]");
+  EXPECT_EQ(error_of(high),
+            "test.yaml:15: key 'path.waypoints[1].position': outside the room (x 0 to 4, y 0 to 3, z 0 to 2.8)");
 }
 
 TEST(Scenario, ResolveNamesAndFiles) {
