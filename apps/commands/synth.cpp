@@ -6,6 +6,7 @@
 #include <string>
 
 #include "apps/common.h"
+#include "apps/interrupt.h"
 #include "apps/progress.h"
 #include "sim/scenario.h"
 #include "sim/sequence.h"
@@ -38,7 +39,15 @@ void run_synth(const SynthArgs& a) {
                sequence.scenario().name, file.string(), a.variant, a.seed, sequence.frame_count(), a.width, a.height,
                sequence.scene().objects.size(), a.out);
   Progress progress("synth", static_cast<size_t>(sequence.frame_count()), true);  // on a terminal only
-  sim::write_sequence(sequence, a.out, [&progress](int done, int) { progress.update(static_cast<size_t>(done)); });
+  // A first Ctrl-C or SIGTERM stops after the frame in hand; write_sequence then removes its
+  // partial folder, and an earlier sequence at --out is left as it was.
+  const InterruptScope interrupt_scope;
+  sim::write_sequence(sequence, a.out, [&progress](int done, int total) {
+    progress.update(static_cast<size_t>(done));
+    if (const int signal = InterruptScope::requested(); signal != 0 && done < total)
+      throw Interrupted(signal, "synth interrupted (" + signal_name(signal) + ") after " + std::to_string(done) +
+                                    " of " + std::to_string(total) + " frames: nothing written");
+  });
   progress.finish();
   spdlog::info("synth: wrote {}", a.out);
 }

@@ -706,6 +706,26 @@ TEST(CliPipeline, InterruptedRunWritesTheFramesSoFar) {
   EXPECT_TRUE(fs::exists(dir / "run" / "points.ply"));
 }
 
+// SIGTERM during synth: it stops after the frame in hand, removes its partial folder and leaves an
+// earlier sequence at --out as it was (before, the partial folder of PNGs stayed beside it).
+TEST(CliPipeline, InterruptedSynthLeavesNothing) {
+  const fs::path dir = scratch_dir();
+  ASSERT_EQ(wardmap_cli("-q synth --scenario ward --frames 3 --out " + shq(dir / "seq")).code, 0);
+  const std::string rgb_txt = read_all(dir / "seq" / "rgb.txt");
+  const fs::path err = dir / "stderr.txt";
+  CliResult r;  // the whole ward sequence, 454 frames: the signal 1 s after its start arrives mid-way
+  r.code = run_command((binary_dir() / "apps" / "wardmap").string() + " synth --scenario ward --out " +
+                           shq(dir / "seq") + " 2>" + shq(err) + " & pid=$!; for i in $(seq 600); do grep -q 'synth:' " +
+                           shq(err) + " && break; sleep 0.1; done; sleep 1; kill -TERM $pid; wait $pid; code=$?; cat " +
+                           shq(err) + "; exit $code",
+                       &r.output);
+  EXPECT_EQ(r.code, 128 + 15) << r.output;
+  EXPECT_NE(r.output.find("wardmap: synth interrupted (SIGTERM) after "), std::string::npos) << r.output;
+  EXPECT_EQ(read_all(dir / "seq" / "rgb.txt"), rgb_txt);
+  for (const auto& entry : fs::directory_iterator(dir))
+    EXPECT_EQ(entry.path().filename().string().find(".seq.partial"), std::string::npos) << entry.path();
+}
+
 // eval-objects scores a run folder as the run itself did, refuses a run of another sequence, and
 // compare checks every sequence for object ground truth before its table starts.
 // --set KEY=VALUE changes a setting for one run, over the sequence's settings file, and the run
