@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "slam/core/errors.h"
+#include "slam/io/text_file.h"
 
 namespace wardmap::apps {
 
@@ -47,6 +48,11 @@ void require_run_files(const std::filesystem::path& run, const std::vector<std::
                                                     "--objects, or --poses gt)"
                                                   : "not found: is this a wardmap run folder?");
   }
+}
+
+void check_output_files(std::initializer_list<std::pair<std::string, const char*>> files) {
+  for (const auto& [file, option] : files)
+    if (!file.empty()) slam::io::check_output_file(file, option);
 }
 
 void add_reader_options(CLI::App* cmd, ReaderArgs& args) {

@@ -3,7 +3,9 @@
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <initializer_list>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "slam/eval/trajectory_eval.h"
@@ -22,6 +24,11 @@ CLI::Validator whole_number(unsigned long long min = 0);
 // Throws InputError naming the first of `files` missing from the run folder `run`: a run folder
 // without objects (a SLAM run without --objects) is told so, any other folder is asked about.
 void require_run_files(const std::filesystem::path& run, const std::vector<std::string>& files);
+
+// Throws InputError for the first given (non-empty) output file that cannot be written: a folder,
+// or in a path that cannot be made (slam::io::check_output_file). Called before the work, so that a
+// bad --json or --plot is not found only after it.
+void check_output_files(std::initializer_list<std::pair<std::string, const char*>> files);
 
 // How a command opens its sequences: --format, --rate, --kitti-camera, --first-frame, --frames.
 struct ReaderArgs {

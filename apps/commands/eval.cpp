@@ -35,6 +35,7 @@ nlohmann::json stats_json(const slam::eval::ErrorStats& s) {
 }
 
 void run_eval(const EvalArgs& a) {
+  check_output_files({{a.json, "--json"}, {a.plot, "--plot"}, {a.errors, "--errors"}});
   const auto alignment = slam::eval::parse_alignment(a.align);
   // Ground truth: a pose file, or a dataset folder whose ground truth is read by its reader.
   Trajectory gt;
@@ -48,11 +49,17 @@ void run_eval(const EvalArgs& a) {
       throw InputError(a.gt, "--first-frame and --frames cut a dataset's frames: give the dataset folder as --gt");
     gt = slam::io::read_trajectory(a.gt, slam::io::PoseFormat::Auto);
   }
-  Trajectory est = slam::io::read_trajectory(a.est, slam::io::parse_pose_format(a.est_format));
+  // Estimate: a pose file, or a run folder's trajectory.txt.
+  std::string est_file = a.est;
+  if (fs::is_directory(a.est)) {
+    require_run_files(a.est, {"trajectory.txt"});
+    est_file = (fs::path(a.est) / "trajectory.txt").string();
+  }
+  Trajectory est = slam::io::read_trajectory(est_file, slam::io::parse_pose_format(a.est_format));
   if (est.indexed && sequence) {
     // A KITTI-format estimate has one pose per frame: give it the frames' timestamps.
     if (est.size() > sequence->size())
-      throw InputError(a.est, "has " + std::to_string(est.size()) + " poses for a sequence of " +
+      throw InputError(est_file, "has " + std::to_string(est.size()) + " poses for a sequence of " +
                                   std::to_string(sequence->size()) + " frames");
     for (size_t i = 0; i < est.size(); ++i) est.timestamps[i] = sequence->timestamp(i);
     est.indexed = false;
@@ -65,17 +72,17 @@ void run_eval(const EvalArgs& a) {
   assoc.max_dt = a.max_dt;
   const auto pairs = slam::eval::associate(gt, est, assoc);
   if (pairs.size() < 3 && alignment != slam::eval::Alignment::None)
-    throw InputError(a.est, "only " + std::to_string(pairs.size()) +
+    throw InputError(est_file, "only " + std::to_string(pairs.size()) +
                                 " poses pair with the ground truth (within " + std::to_string(a.max_dt) +
                                 " s); at least 3 are needed to align");
-  if (pairs.empty()) throw InputError(a.est, "no pose pairs with the ground truth within the time window");
+  if (pairs.empty()) throw InputError(est_file, "no pose pairs with the ground truth within the time window");
   const auto ate = slam::eval::compute_ate(gt, est, pairs, alignment);
   const auto rpe = slam::eval::compute_rpe(gt, est, pairs, a.rpe_delta, ate.scale);
   const double rate = slam::eval::tracking_rate(gt, est, assoc);
   const auto drift = slam::eval::compute_scale_drift(gt, est, pairs);
 
   std::printf("ground truth:   %s (%zu poses)\n", a.gt.c_str(), gt.size());
-  std::printf("estimate:       %s (%zu poses)\n", a.est.c_str(), est.size());
+  std::printf("estimate:       %s (%zu poses)\n", est_file.c_str(), est.size());
   std::printf("pairs:          %zu (max dt %.3f s)\n", pairs.size(), a.max_dt);
   std::printf("alignment:      %s, scale %.9f\n", a.align.c_str(), ate.scale);
   std::printf("ATE RMSE:       %.9f m\n", ate.stats.rmse);
@@ -86,7 +93,7 @@ void run_eval(const EvalArgs& a) {
 
   if (!a.json.empty()) {
     const auto& T = ate.transform;
-    nlohmann::json j = {{"ground_truth", a.gt}, {"estimate", a.est}, {"alignment", a.align}, {"max_dt", a.max_dt},
+    nlohmann::json j = {{"ground_truth", a.gt}, {"estimate", est_file}, {"alignment", a.align}, {"max_dt", a.max_dt},
                         {"poses_ground_truth", gt.size()}, {"poses_estimate", est.size()}, {"pairs", pairs.size()},
                         {"scale", ate.scale}, {"ate", stats_json(ate.stats)},
                         {"rpe", {{"delta_frames", rpe.delta}, {"count", rpe.count},
@@ -136,7 +143,7 @@ void add_eval_command(CLI::App& app) {
       "Also the scale drift: the estimate's displacement over each second against the truth's, divided by their\n"
       "mean; the slope of their least-squares line in % a second (negative: the estimate shrinks along the run).");
   cmd->add_option("--gt", args->gt, "Ground truth: a TUM or KITTI pose file, or a dataset folder")->required();
-  cmd->add_option("--est", args->est, "Estimated trajectory: a TUM or KITTI pose file")->required();
+  cmd->add_option("--est", args->est, "Estimated trajectory: a TUM or KITTI pose file, or a run folder (its trajectory.txt)")->required();
   cmd->add_option("--align", args->align, "Alignment: sim3 (monocular), se3 (RGB-D, stereo) or none")->capture_default_str()
       ->check(CLI::IsMember({"sim3", "se3", "none"}));
   cmd->add_option("--max-dt", args->max_dt, "Largest time difference for a pose pair (s)")

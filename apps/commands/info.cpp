@@ -43,6 +43,7 @@ slam::io::Settings check_settings(const fs::path& file, const std::vector<slam::
 }
 
 void run_info(const InfoArgs& a) {
+  check_output_files({{a.json, "--json"}});
   const auto reader = slam::io::open_sequence(a.path, reader_options(a.reader));
   const auto& in = reader->info();
   const std::string suggestion = slam::io::suggest_settings_name(slam::io::to_string(in.kind), in.root, in.width);

@@ -50,6 +50,7 @@ struct EvalObjectsArgs {
 };
 
 void eval_objects(const EvalObjectsArgs& a) {
+  check_output_files({{a.json, "--json"}});
   const fs::path run = a.run, seq = a.sequence;
   require_run_files(run, {"trajectory.txt", "measurements.jsonl", "objects.json"});
   require_object_ground_truth(seq);
@@ -120,6 +121,7 @@ struct CompareArgs {
 };
 
 void compare(CompareArgs& a) {
+  check_output_files({{a.json, "--json"}});
   a.job.reader = reader_options(a.reader);
   a.job.settings_overrides = parse_set_options(a.set);
   for (const auto& s : a.sequences) require_object_ground_truth(s);  // before the table starts

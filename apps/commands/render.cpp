@@ -21,6 +21,7 @@ struct RenderArgs {
 };
 
 void render_map(const RenderArgs& a) {
+  check_output_files({{a.out, "--out"}});
   fs::path glb = a.input;
   if (fs::is_directory(glb)) {
     require_run_files(glb, {"map.glb"});

@@ -48,7 +48,7 @@ void run_train(const TrainArgs& a) {
     throw CLI::ValidationError(message);
   }
   // Checked before the features and the training, not when the file is written at the end.
-  slam::io::check_output_file(a.out, "--out");
+  check_output_files({{a.out, "--out"}});
   const auto start = std::chrono::steady_clock::now();
   const slam::OrbExtractor extractor(slam::OrbOptions{});  // the front-process's default ORB settings
   const auto ro = reader_options(a.reader);

@@ -19,6 +19,7 @@ namespace fs = std::filesystem;
 void for_each_data_line(const fs::path& file, bool csv,
                         const std::function<void(long, const std::vector<std::string>&)>& fn) {
   if (!fs::exists(file)) throw InputError(file.string(), "file not found");
+  if (fs::is_directory(file)) throw InputError(file.string(), "is a folder, not a text file");
   std::ifstream in(file);
   if (!in) throw InputError(file.string(), std::string("cannot open: ") + std::strerror(errno));
   std::string line;
@@ -80,8 +81,9 @@ void write_file_atomic(const fs::path& file, const std::string& contents) {
   std::error_code ec;
   fs::rename(tmp, file, ec);
   if (ec) {
+    const std::string problem = ec.message();  // before the removal resets it
     fs::remove(tmp, ec);
-    throw InputError(file.string(), "cannot rename the temporary file into place: " + ec.message());
+    throw InputError(file.string(), "cannot rename the temporary file into place: " + problem);
   }
 }
 

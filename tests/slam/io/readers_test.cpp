@@ -355,6 +355,14 @@ TEST(BadInput, DepthImageListedAsColour) {
   EXPECT_EQ(open_sequence(root / "folder")->read(0).image.type(), CV_8UC1);
 }
 
+TEST(BadInput, IndexThatIsAFolder) {
+  const fs::path root = scratch_dir();
+  test::make_tum(root);
+  fs::remove(root / "depth.txt");
+  fs::create_directories(root / "depth.txt");
+  EXPECT_EQ(error_of(root), (root / "depth.txt").string() + ": is a folder, not a text file");  // was "read error"
+}
+
 TEST(BadInput, PosesThatAreNotRotations) {
   const fs::path root = scratch_dir();
   test::make_seven_scenes(root / "7scenes");  // a shear passes a determinant test alone
