@@ -95,12 +95,12 @@ void run_info(const InfoArgs& a) {
     std::printf("ground truth:  no (%s)\n", in.ground_truth_unmatched.c_str());
   else std::printf("ground truth:  no\n");
   if (!in.notes.empty()) std::printf("notes:         %s\n", in.notes.c_str());
-  if (settings)
+  if (settings) {
     std::printf("settings:      %s%s: valid (camera, tracking, mapping, semantics, detection)%s\n",
                 settings_file.c_str(), overrides_text(overrides).c_str(),
                 settings->notes.empty() ? "" : ", but ignores:");
-  if (settings)
     for (const std::string& note : settings->notes) std::printf("               %s\n", note.c_str());
+  }
 
   if (!a.json.empty()) {
     nlohmann::json j = {{"kind", slam::io::to_string(in.kind)}, {"path", in.root.string()}, {"frames", in.frame_count},
