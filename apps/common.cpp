@@ -128,6 +128,12 @@ std::string scale_drift_text(const slam::eval::ScaleDriftResult& drift) {
   return buf;
 }
 
+std::string settings_notes_text(const std::vector<std::string>& notes) {
+  std::string text;
+  for (const std::string& note : notes) text += "  - not read: " + note + "\n";
+  return text;
+}
+
 void warn_settings_notes(const slam::io::Settings& settings) {
   static std::mutex mutex;
   static std::set<std::string> warned;

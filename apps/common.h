@@ -52,6 +52,9 @@ std::vector<slam::io::SettingOverride> parse_set_options(const std::vector<std::
 // Logs a warning for each of the settings' notes (keys not read that look meant), each once per
 // process: a SLAM run with --objects and `compare` read one file more than once.
 void warn_settings_notes(const slam::io::Settings& settings);
+// The notes as report.md lists them under its settings line ("  - not read: NOTE" lines); empty
+// without notes.
+std::string settings_notes_text(const std::vector<std::string>& notes);
 
 // The --set overrides of a run, for report.json ("KEY=VALUE" strings, in order) and report.md
 // (", with --set KEY=VALUE, ..." after the settings file's name; empty without overrides).

@@ -124,7 +124,10 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
   if (!job.settings.empty())
     slam::io::blame_overrides(job.settings_overrides,
                               [&] { settings = slam::io::load_settings(job.settings, job.settings_overrides); });
-  if (settings) warn_settings_notes(*settings);
+  if (settings) {
+    warn_settings_notes(*settings);
+    setup->settings_notes = settings->notes;
+  }
   // The semantics and detection sections: the file's, else those --set alone gives (the camera is
   // then the dataset's, so only those sections' keys may be set).
   YAML::Node sections = settings ? settings->root : YAML::Node(YAML::NodeType::Map);
@@ -363,10 +366,12 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
     report["first_frame"] = reader->first_frame();  // of the stretch run (--first-frame)
     report["settings"] = job.settings.string();     // empty: the defaults
     report["settings_overrides"] = overrides_json(job.settings_overrides);
+    report["settings_notes"] = setup->settings_notes;
     std::string md = "# wardmap run\n\n- sequence: `" + job.sequence.string() + "`\n- poses: " + (own_run ? "ground truth" : "SLAM keyframes") + "\n- detector: " +
                      setup->detector_kind + "\n- association: " + options.association.mode + "\n- settings: " +
                      (job.settings.empty() ? std::string("the defaults") : "`" + job.settings.string() + "`") +
-                     overrides_text(job.settings_overrides) + "\n- keyframes: " +
+                     overrides_text(job.settings_overrides) + "\n" + settings_notes_text(setup->settings_notes) +
+                     "- keyframes: " +
                      std::to_string(run.keyframes.size()) + ", groups: " + std::to_string(run.result.num_groups) +
                      ", landmarks: " + std::to_string(run.result.landmarks.size()) + "\n";
     if (!own_run)  // keyframe images queued for detection while the SLAM ran (the rest: after it)

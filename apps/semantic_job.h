@@ -73,6 +73,7 @@ struct SemanticSetup {
   semantics::SemanticOptions options;
   std::unique_ptr<semantics::Detector> detector;
   std::string detector_kind;  // yolox, nanodet or annotations: the job's choice or its default
+  std::vector<std::string> settings_notes;  // keys of the settings file that look meant but are not read
   std::unique_ptr<DetectionCache> cache;  // the detector and the embedder, once per image
   ~SemanticSetup();
 };

@@ -265,6 +265,7 @@ double run_slam_job(const SlamJob& job) {
                  {"flow_frames", flow_frames}};
   report["first_frame"] = reader->first_frame();  // of the stretch run (--first-frame)
   report["settings_overrides"] = overrides_json(job.settings_overrides);  // --set KEY=VALUE, in order
+  report["settings_notes"] = settings.notes;  // keys that look meant but are not read
   if (interrupted) report["interrupted"] = signal_name(interrupted);
   {
     // What local mapping did, over the run (all submaps).
@@ -284,7 +285,8 @@ double run_slam_job(const SlamJob& job) {
                    (job.deterministic ? ", deterministic (mapping inline)" : job.realtime ? ", threaded, input at the sequence's rate (--realtime)" : ", threaded") +
                    "\n- frames: " + std::to_string(reader->size()) + ", in the final map: " + std::to_string(traj.size()) +
                    ", submaps: " + std::to_string(front.submaps().size()) + "\n";
-  md += "- settings: `" + settings_file.string() + "`" + overrides_text(job.settings_overrides) + "\n";
+  md += "- settings: `" + settings_file.string() + "`" + overrides_text(job.settings_overrides) + "\n" +
+        settings_notes_text(settings.notes);
   if (interrupted)
     md += "- interrupted (" + signal_name(interrupted) + ") after frame " + std::to_string(processed) + " of " +
           std::to_string(reader->size()) + ": the figures below are for those frames\n";

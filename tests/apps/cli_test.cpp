@@ -754,6 +754,26 @@ TEST(CliPipeline, SetOverridesASettingForOneRun) {
             std::string::npos)
       << text;
 
+  // A misspelt key is warned about once (the run reads the file once more for its objects) and
+  // recorded in both reports.
+  write_text(dir / "typo.yaml", read_all(dir / "seq" / "settings.yaml") + "ORBextractor.nFeature: 1500\n");
+  const CliResult typo = wardmap_cli("run " + shq(dir / "seq") + " --mode mono --deterministic --objects --no-embedding "
+                                     "--settings " + shq(dir / "typo.yaml") + " --out " + shq(dir / "typo"));
+  ASSERT_EQ(typo.code, 0) << typo.output;
+  const std::string warning = "key 'ORBextractor.nFeature': not a key wardmap reads, so it changes nothing (did you "
+                              "mean 'ORBextractor.nFeatures'?)";
+  const size_t first = typo.output.find(warning);
+  ASSERT_NE(first, std::string::npos) << typo.output;
+  EXPECT_EQ(typo.output.find(warning, first + 1), std::string::npos) << "warned twice:\n" << typo.output;
+  EXPECT_EQ(report_of(dir / "flow").at("settings_notes"), nlohmann::json::array());
+  for (const char* report : {"report.json", "objects_report.json"}) {
+    std::ifstream in(dir / "typo" / report);
+    const nlohmann::json notes = nlohmann::json::parse(in).at("settings_notes");
+    ASSERT_EQ(notes.size(), 1u) << report;
+    EXPECT_NE(notes[0].get<std::string>().find(warning), std::string::npos) << report;
+  }
+  EXPECT_NE(read_all(dir / "typo" / "report.md").find("  - not read: "), std::string::npos);
+
   expect_one_line_error(wardmap_cli(run + " --set tracking.flow_extnd_mono=false"),
                         "--set tracking.flow_extnd_mono=false: key 'tracking.flow_extnd_mono': not a key of section "
                         "'tracking' (did you mean 'tracking.flow_extend_mono'?)");
