@@ -1,13 +1,13 @@
 #include "apps/common.h"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
 #include <set>
-
-#include <spdlog/spdlog.h>
 
 #include "slam/core/errors.h"
 #include "slam/io/text_file.h"

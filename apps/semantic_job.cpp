@@ -367,13 +367,14 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
     report["settings"] = job.settings.string();     // empty: the defaults
     report["settings_overrides"] = overrides_json(job.settings_overrides);
     report["settings_notes"] = setup->settings_notes;
-    std::string md = "# wardmap run\n\n- sequence: `" + job.sequence.string() + "`\n- poses: " + (own_run ? "ground truth" : "SLAM keyframes") + "\n- detector: " +
-                     setup->detector_kind + "\n- association: " + options.association.mode + "\n- settings: " +
-                     (job.settings.empty() ? std::string("the defaults") : "`" + job.settings.string() + "`") +
-                     overrides_text(job.settings_overrides) + "\n" + settings_notes_text(setup->settings_notes) +
-                     "- keyframes: " +
-                     std::to_string(run.keyframes.size()) + ", groups: " + std::to_string(run.result.num_groups) +
-                     ", landmarks: " + std::to_string(run.result.landmarks.size()) + "\n";
+    std::string md =
+        "# wardmap run\n\n- sequence: `" + job.sequence.string() +
+        "`\n- poses: " + (own_run ? "ground truth" : "SLAM keyframes") + "\n- detector: " + setup->detector_kind +
+        "\n- association: " + options.association.mode +
+        "\n- settings: " + (job.settings.empty() ? std::string("the defaults") : "`" + job.settings.string() + "`") +
+        overrides_text(job.settings_overrides) + "\n" + settings_notes_text(setup->settings_notes) +
+        "- keyframes: " + std::to_string(run.keyframes.size()) + ", groups: " + std::to_string(run.result.num_groups) +
+        ", landmarks: " + std::to_string(run.result.landmarks.size()) + "\n";
     if (!own_run)  // keyframe images queued for detection while the SLAM ran (the rest: after it)
       report["detection_during_slam"] = {{"keyframes_offered", cache.offered()},
                                          {"queue_full", cache.refused()}};

@@ -265,7 +265,7 @@ double run_slam_job(const SlamJob& job) {
                  {"flow_frames", flow_frames}};
   report["first_frame"] = reader->first_frame();  // of the stretch run (--first-frame)
   report["settings_overrides"] = overrides_json(job.settings_overrides);  // --set KEY=VALUE, in order
-  report["settings_notes"] = settings.notes;  // keys that look meant but are not read
+  report["settings_notes"] = settings.notes;                              // keys that look meant but are not read
   if (interrupted) report["interrupted"] = signal_name(interrupted);
   {
     // What local mapping did, over the run (all submaps).

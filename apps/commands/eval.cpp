@@ -60,7 +60,7 @@ void run_eval(const EvalArgs& a) {
     // A KITTI-format estimate has one pose per frame: give it the frames' timestamps.
     if (est.size() > sequence->size())
       throw InputError(est_file, "has " + std::to_string(est.size()) + " poses for a sequence of " +
-                                  std::to_string(sequence->size()) + " frames");
+                                     std::to_string(sequence->size()) + " frames");
     for (size_t i = 0; i < est.size(); ++i) est.timestamps[i] = sequence->timestamp(i);
     est.indexed = false;
   }
@@ -72,9 +72,8 @@ void run_eval(const EvalArgs& a) {
   assoc.max_dt = a.max_dt;
   const auto pairs = slam::eval::associate(gt, est, assoc);
   if (pairs.size() < 3 && alignment != slam::eval::Alignment::None)
-    throw InputError(est_file, "only " + std::to_string(pairs.size()) +
-                                " poses pair with the ground truth (within " + std::to_string(a.max_dt) +
-                                " s); at least 3 are needed to align");
+    throw InputError(est_file, "only " + std::to_string(pairs.size()) + " poses pair with the ground truth (within " +
+                                   std::to_string(a.max_dt) + " s); at least 3 are needed to align");
   if (pairs.empty()) throw InputError(est_file, "no pose pairs with the ground truth within the time window");
   const auto ate = slam::eval::compute_ate(gt, est, pairs, alignment);
   const auto rpe = slam::eval::compute_rpe(gt, est, pairs, a.rpe_delta, ate.scale);
@@ -93,16 +92,26 @@ void run_eval(const EvalArgs& a) {
 
   if (!a.json.empty()) {
     const auto& T = ate.transform;
-    nlohmann::json j = {{"ground_truth", a.gt}, {"estimate", est_file}, {"alignment", a.align}, {"max_dt", a.max_dt},
-                        {"poses_ground_truth", gt.size()}, {"poses_estimate", est.size()}, {"pairs", pairs.size()},
-                        {"scale", ate.scale}, {"ate", stats_json(ate.stats)},
-                        {"rpe", {{"delta_frames", rpe.delta}, {"count", rpe.count},
-                                 {"translation", stats_json(rpe.translation)}, {"rotation_deg", stats_json(rpe.rotation_deg)}}},
+    nlohmann::json j = {{"ground_truth", a.gt},
+                        {"estimate", est_file},
+                        {"alignment", a.align},
+                        {"max_dt", a.max_dt},
+                        {"poses_ground_truth", gt.size()},
+                        {"poses_estimate", est.size()},
+                        {"pairs", pairs.size()},
+                        {"scale", ate.scale},
+                        {"ate", stats_json(ate.stats)},
+                        {"rpe",
+                         {{"delta_frames", rpe.delta},
+                          {"count", rpe.count},
+                          {"translation", stats_json(rpe.translation)},
+                          {"rotation_deg", stats_json(rpe.rotation_deg)}}},
                         {"tracking_rate", rate},
                         {"scale_drift", scale_drift_json(drift)},
-                        {"transform", {{"scale", T.scale()},
-                                       {"rotation_xyzw", {T.rotation().x(), T.rotation().y(), T.rotation().z(), T.rotation().w()}},
-                                       {"translation", {T.translation().x(), T.translation().y(), T.translation().z()}}}}};
+                        {"transform",
+                         {{"scale", T.scale()},
+                          {"rotation_xyzw", {T.rotation().x(), T.rotation().y(), T.rotation().z(), T.rotation().w()}},
+                          {"translation", {T.translation().x(), T.translation().y(), T.translation().z()}}}}};
     slam::io::write_file_atomic(a.json, j.dump(2) + "\n");
   }
   if (!a.errors.empty()) {
@@ -143,7 +152,9 @@ void add_eval_command(CLI::App& app) {
       "Also the scale drift: the estimate's displacement over each second against the truth's, divided by their\n"
       "mean; the slope of their least-squares line in % a second (negative: the estimate shrinks along the run).");
   cmd->add_option("--gt", args->gt, "Ground truth: a TUM or KITTI pose file, or a dataset folder")->required();
-  cmd->add_option("--est", args->est, "Estimated trajectory: a TUM or KITTI pose file, or a run folder (its trajectory.txt)")->required();
+  cmd->add_option("--est", args->est,
+                  "Estimated trajectory: a TUM or KITTI pose file, or a run folder (its trajectory.txt)")
+      ->required();
   cmd->add_option("--align", args->align, "Alignment: sim3 (monocular), se3 (RGB-D, stereo) or none")->capture_default_str()
       ->check(CLI::IsMember({"sim3", "se3", "none"}));
   cmd->add_option("--max-dt", args->max_dt, "Largest time difference for a pose pair (s)")

@@ -42,8 +42,8 @@ void run_train(const TrainArgs& a) {
     a.options.validate();
   } catch (const std::invalid_argument& e) {
     std::string message = e.what();  // named by the options' keys; this command sets them by flags
-    for (const auto& [key, flag] : {std::pair{"place.branching", "--k"}, {"place.levels", "--levels"},
-                                    {"place.max_iterations", "--iterations"}})
+    for (const auto& [key, flag] :
+         {std::pair{"place.branching", "--k"}, {"place.levels", "--levels"}, {"place.max_iterations", "--iterations"}})
       for (size_t at; (at = message.find(key)) != std::string::npos;) message.replace(at, std::strlen(key), flag);
     throw CLI::ValidationError(message);
   }

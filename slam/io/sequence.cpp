@@ -42,8 +42,9 @@ cv::Mat load_image(const fs::path& file, bool beside_depth) {
   cv::Mat img = cv::imread(file.string(), cv::IMREAD_UNCHANGED);
   if (img.empty()) throw InputError(file.string(), "cannot decode the image (corrupt or not an image)");
   if (beside_depth && img.type() == CV_16UC1)
-    throw InputError(file.string(), "a 16-bit single-channel image where the colour image is expected (a depth "
-                                    "image listed as colour?)");
+    throw InputError(file.string(),
+                     "a 16-bit single-channel image where the colour image is expected (a depth "
+                     "image listed as colour?)");
   if (img.depth() == CV_16U) img.convertTo(img, CV_8U, 1.0 / 256);
   if (img.depth() != CV_8U) throw InputError(file.string(), "unsupported pixel type (expected 8 or 16 bit)");
   if (img.channels() == 4) cv::cvtColor(img, img, cv::COLOR_BGRA2BGR);

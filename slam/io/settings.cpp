@@ -95,13 +95,40 @@ const char* const kSections[] = {"tracking", "mapping", "semantics", "detection"
 // The top-level keys wardmap reads (ORB-SLAM3's): parse_settings's camera keys, then
 // load_front_options's ORBextractor and Stereo keys. A settings file may hold others (ORB-SLAM3's
 // viewer, IMU...), which are ignored; a --set of one would change nothing, so it is refused.
-const char* const kTopLevelKeys[] = {
-    "Camera.type", "Camera1.fx", "Camera1.fy", "Camera1.cx", "Camera1.cy", "Camera1.k1", "Camera1.k2", "Camera1.p1",
-    "Camera1.p2", "Camera1.k3", "Camera.fx", "Camera.fy", "Camera.cx", "Camera.cy", "Camera.k1", "Camera.k2",
-    "Camera.p1", "Camera.p2", "Camera.k3", "Camera.width", "Camera.height", "Camera.fps", "Camera.RGB",
-    "RGBD.DepthMapFactor", "DepthMapFactor", "ORBextractor.nFeatures", "ORBextractor.scaleFactor",
-    "ORBextractor.nLevels", "ORBextractor.iniThFAST", "ORBextractor.minThFAST", "Stereo.b", "Stereo.ThDepth",
-    "Camera.bf", "ThDepth"};
+const char* const kTopLevelKeys[] = {"Camera.type",
+                                     "Camera1.fx",
+                                     "Camera1.fy",
+                                     "Camera1.cx",
+                                     "Camera1.cy",
+                                     "Camera1.k1",
+                                     "Camera1.k2",
+                                     "Camera1.p1",
+                                     "Camera1.p2",
+                                     "Camera1.k3",
+                                     "Camera.fx",
+                                     "Camera.fy",
+                                     "Camera.cx",
+                                     "Camera.cy",
+                                     "Camera.k1",
+                                     "Camera.k2",
+                                     "Camera.p1",
+                                     "Camera.p2",
+                                     "Camera.k3",
+                                     "Camera.width",
+                                     "Camera.height",
+                                     "Camera.fps",
+                                     "Camera.RGB",
+                                     "RGBD.DepthMapFactor",
+                                     "DepthMapFactor",
+                                     "ORBextractor.nFeatures",
+                                     "ORBextractor.scaleFactor",
+                                     "ORBextractor.nLevels",
+                                     "ORBextractor.iniThFAST",
+                                     "ORBextractor.minThFAST",
+                                     "Stereo.b",
+                                     "Stereo.ThDepth",
+                                     "Camera.bf",
+                                     "ThDepth"};
 
 // ORB-SLAM3 keys wardmap does not read that are one letter from a key it does: not misspellings.
 const char* const kNotMisspellings[] = {"Camera1.k4", "Camera.k4"};
@@ -306,18 +333,23 @@ std::vector<std::string> unread_key_notes(const YAML::Node& root, const CameraSe
     const auto number = [&] { return kv.second.IsScalar() ? std::strtod(kv.second.Scalar().c_str(), nullptr) : 0.0; };
     if (key.rfind("Camera2.", 0) == 0) {
       if (!second_camera)
-        notes.push_back(at + ": a stereo rig's second camera (Camera2.*) is not read; wardmap runs monocular or RGB-D "
-                             "on Camera1");
+        notes.push_back(at +
+                        ": a stereo rig's second camera (Camera2.*) is not read; wardmap runs monocular or RGB-D "
+                        "on Camera1");
       second_camera = true;
-    } else if ((key == "Camera.imageScale" && number() != 1) || (key == "Camera.newWidth" && number() != c.camera.width) ||
+    } else if ((key == "Camera.imageScale" && number() != 1) ||
+               (key == "Camera.newWidth" && number() != c.camera.width) ||
                (key == "Camera.newHeight" && number() != c.camera.height)) {
-      notes.push_back(at + ": ORB-SLAM3 resizes the images by it; wardmap does not read it and tracks the images at "
-                           "their own size with Camera1's calibration");
+      notes.push_back(at +
+                      ": ORB-SLAM3 resizes the images by it; wardmap does not read it and tracks the images at "
+                      "their own size with Camera1's calibration");
     } else if (kv.second.IsMap()) {
       const std::string section = kv.second["data"] ? "" : closest_key(key, kSections);  // "data": an OpenCV matrix
       if (!section.empty())
-        throw InputError(file.string(), "key '" + key + "': not a section wardmap reads (did you mean '" + section +
-                                            "'?); its keys would all be ignored", line);
+        throw InputError(file.string(),
+                         "key '" + key + "': not a section wardmap reads (did you mean '" + section +
+                             "'?); its keys would all be ignored",
+                         line);
     } else if (const std::string best = closest_key(key, kTopLevelKeys, 2); !best.empty()) {
       notes.push_back(at + ": not a key wardmap reads, so it changes nothing (did you mean '" + best + "'?)");
     }

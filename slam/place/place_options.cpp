@@ -24,8 +24,9 @@ void PlaceOptions::validate() const {
   check_range(min_common_ratio, 0.0, 1.0, "place.min_common_ratio");
   const double max_words = 16777216.0;  // word ids and file sizes stay small
   if (std::pow(static_cast<double>(branching), levels) > max_words)
-    throw std::invalid_argument("place.levels: at most 16777216 words (place.branching to the power place.levels), got " +
-                                std::to_string(branching) + "^" + std::to_string(levels));
+    throw std::invalid_argument(
+        "place.levels: at most 16777216 words (place.branching to the power place.levels), got " +
+        std::to_string(branching) + "^" + std::to_string(levels));
 }
 
 }  // namespace wardmap::slam::place

@@ -87,7 +87,8 @@ TEST(CliBadInput, NumericOptionsSayWhatIsWrongInOneLine) {
             "--frames: expected a whole number from 1, got '0'"},
            {"eval --gt " + shq(root) + " --est x --max-dt -1", "--max-dt: must be a number above 0, got -1"},
            // Before: named by a settings key that no settings file has (place.branching).
-           {"vocabulary train " + shq(root) + " --out " + shq(root / "out") + " --k 1", "--k must be in [2, 64], got 1"}}) {
+           {"vocabulary train " + shq(root) + " --out " + shq(root / "out") + " --k 1",
+            "--k must be in [2, 64], got 1"}}) {
     const CliResult r = wardmap_cli(args);
     EXPECT_EQ(r.code, 2) << args;
     EXPECT_EQ(r.output.rfind(message + "\n", 0), 0u) << args << ": " << r.output;
@@ -714,11 +715,11 @@ TEST(CliPipeline, InterruptedSynthLeavesNothing) {
   const std::string rgb_txt = read_all(dir / "seq" / "rgb.txt");
   const fs::path err = dir / "stderr.txt";
   CliResult r;  // the whole ward sequence, 454 frames: the signal 1 s after its start arrives mid-way
-  r.code = run_command((binary_dir() / "apps" / "wardmap").string() + " synth --scenario ward --out " +
-                           shq(dir / "seq") + " 2>" + shq(err) + " & pid=$!; for i in $(seq 600); do grep -q 'synth:' " +
-                           shq(err) + " && break; sleep 0.1; done; sleep 1; kill -TERM $pid; wait $pid; code=$?; cat " +
-                           shq(err) + "; exit $code",
-                       &r.output);
+  r.code = run_command(
+      (binary_dir() / "apps" / "wardmap").string() + " synth --scenario ward --out " + shq(dir / "seq") + " 2>" +
+          shq(err) + " & pid=$!; for i in $(seq 600); do grep -q 'synth:' " + shq(err) +
+          " && break; sleep 0.1; done; sleep 1; kill -TERM $pid; wait $pid; code=$?; cat " + shq(err) + "; exit $code",
+      &r.output);
   EXPECT_EQ(r.code, 128 + 15) << r.output;
   EXPECT_NE(r.output.find("wardmap: synth interrupted (SIGTERM) after "), std::string::npos) << r.output;
   EXPECT_EQ(read_all(dir / "seq" / "rgb.txt"), rgb_txt);
@@ -757,11 +758,14 @@ TEST(CliPipeline, SetOverridesASettingForOneRun) {
   // A misspelt key is warned about once (the run reads the file once more for its objects) and
   // recorded in both reports.
   write_text(dir / "typo.yaml", read_all(dir / "seq" / "settings.yaml") + "ORBextractor.nFeature: 1500\n");
-  const CliResult typo = wardmap_cli("run " + shq(dir / "seq") + " --mode mono --deterministic --objects --no-embedding "
-                                     "--settings " + shq(dir / "typo.yaml") + " --out " + shq(dir / "typo"));
+  const CliResult typo = wardmap_cli("run " + shq(dir / "seq") +
+                                     " --mode mono --deterministic --objects --no-embedding "
+                                     "--settings " +
+                                     shq(dir / "typo.yaml") + " --out " + shq(dir / "typo"));
   ASSERT_EQ(typo.code, 0) << typo.output;
-  const std::string warning = "key 'ORBextractor.nFeature': not a key wardmap reads, so it changes nothing (did you "
-                              "mean 'ORBextractor.nFeatures'?)";
+  const std::string warning =
+      "key 'ORBextractor.nFeature': not a key wardmap reads, so it changes nothing (did you "
+      "mean 'ORBextractor.nFeatures'?)";
   const size_t first = typo.output.find(warning);
   ASSERT_NE(first, std::string::npos) << typo.output;
   EXPECT_EQ(typo.output.find(warning, first + 1), std::string::npos) << "warned twice:\n" << typo.output;

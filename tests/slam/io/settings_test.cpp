@@ -65,8 +65,11 @@ TEST(Settings, OrbSlam2KeysToo) {
 
 // The notes of a minimal valid file with `extra` appended (its first line is line 7).
 std::vector<std::string> notes_of(const std::string& extra) {
-  return parse_settings("Camera1.fx: 500\nCamera1.fy: 500\nCamera1.cx: 320\nCamera1.cy: 240\nCamera.width: 640\n"
-                        "Camera.height: 480\n" + extra, "s.yaml")
+  return parse_settings(
+             "Camera1.fx: 500\nCamera1.fy: 500\nCamera1.cx: 320\nCamera1.cy: 240\nCamera.width: 640\n"
+             "Camera.height: 480\n" +
+                 extra,
+             "s.yaml")
       .notes;
 }
 
@@ -74,9 +77,10 @@ TEST(Settings, UnreadKeysThatLookMeantAreNoted) {
   EXPECT_EQ(notes_of("ORBextractor.nFeature: 1500\n"),
             std::vector<std::string>{"s.yaml:7: key 'ORBextractor.nFeature': not a key wardmap reads, so it changes "
                                      "nothing (did you mean 'ORBextractor.nFeatures'?)"});
-  EXPECT_EQ(notes_of("Camera2.fx: 500\nCamera2.fy: 500\n"),
-            std::vector<std::string>{"s.yaml:7: key 'Camera2.fx': a stereo rig's second camera (Camera2.*) is not read; "
-                                     "wardmap runs monocular or RGB-D on Camera1"});
+  EXPECT_EQ(
+      notes_of("Camera2.fx: 500\nCamera2.fy: 500\n"),
+      std::vector<std::string>{"s.yaml:7: key 'Camera2.fx': a stereo rig's second camera (Camera2.*) is not read; "
+                               "wardmap runs monocular or RGB-D on Camera1"});
   EXPECT_EQ(notes_of("Camera.imageScale: 0.5\n").size(), 1u);
   EXPECT_EQ(notes_of("Camera.newWidth: 600\n").size(), 1u);
   // ORB-SLAM3's keys that change nothing here, or are ORB-SLAM2's names of keys read: no note.
