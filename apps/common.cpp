@@ -50,6 +50,12 @@ void require_run_files(const std::filesystem::path& run, const std::vector<std::
   }
 }
 
+std::filesystem::path file_or_run_file(const std::filesystem::path& given, const std::string& name) {
+  if (!std::filesystem::is_directory(given)) return given;
+  require_run_files(given, {name});
+  return given / name;
+}
+
 void check_output_files(std::initializer_list<std::pair<std::string, const char*>> files) {
   for (const auto& [file, option] : files)
     if (!file.empty()) slam::io::check_output_file(file, option);

@@ -24,6 +24,9 @@ CLI::Validator whole_number(unsigned long long min = 0);
 // Throws InputError naming the first of `files` missing from the run folder `run`: a run folder
 // without objects (a SLAM run without --objects) is told so, any other folder is asked about.
 void require_run_files(const std::filesystem::path& run, const std::vector<std::string>& files);
+// `given` when it is a file; when it is a folder, its `name` (a run folder's map.glb or
+// trajectory.txt), checked by require_run_files.
+std::filesystem::path file_or_run_file(const std::filesystem::path& given, const std::string& name);
 
 // Throws InputError for the first given (non-empty) output file that cannot be written: a folder,
 // or in a path that cannot be made (slam::io::check_output_file). Called before the work, so that a

@@ -49,12 +49,7 @@ void run_eval(const EvalArgs& a) {
       throw InputError(a.gt, "--first-frame and --frames cut a dataset's frames: give the dataset folder as --gt");
     gt = slam::io::read_trajectory(a.gt, slam::io::PoseFormat::Auto);
   }
-  // Estimate: a pose file, or a run folder's trajectory.txt.
-  std::string est_file = a.est;
-  if (fs::is_directory(a.est)) {
-    require_run_files(a.est, {"trajectory.txt"});
-    est_file = (fs::path(a.est) / "trajectory.txt").string();
-  }
+  const std::string est_file = file_or_run_file(a.est, "trajectory.txt").string();  // a pose file, or a run's
   Trajectory est = slam::io::read_trajectory(est_file, slam::io::parse_pose_format(a.est_format));
   if (est.indexed && sequence) {
     // A KITTI-format estimate has one pose per frame: give it the frames' timestamps.

@@ -22,11 +22,7 @@ struct RenderArgs {
 
 void render_map(const RenderArgs& a) {
   check_output_files({{a.out, "--out"}});
-  fs::path glb = a.input;
-  if (fs::is_directory(glb)) {
-    require_run_files(glb, {"map.glb"});
-    glb /= "map.glb";
-  }
+  const fs::path glb = file_or_run_file(a.input, "map.glb");
   // The file first (exit 2 on bad input), the display second.
   const semantics::MapScene scene = semantics::read_map_scene(glb);
   semantics::MapRenderOptions o;

@@ -5,7 +5,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <memory>
 #include <opencv2/imgproc.hpp>
 #include <string>
@@ -39,13 +38,9 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 
 void run_train(const TrainArgs& a) {
   try {
-    a.options.validate();
+    a.options.validate(slam::place::PlaceOptionNames{"--k", "--levels", "--iterations"});  // this command sets them by flags
   } catch (const std::invalid_argument& e) {
-    std::string message = e.what();  // named by the options' keys; this command sets them by flags
-    for (const auto& [key, flag] :
-         {std::pair{"place.branching", "--k"}, {"place.levels", "--levels"}, {"place.max_iterations", "--iterations"}})
-      for (size_t at; (at = message.find(key)) != std::string::npos;) message.replace(at, std::strlen(key), flag);
-    throw CLI::ValidationError(message);
+    throw CLI::ValidationError(e.what());
   }
   // Checked before the features and the training, not when the file is written at the end.
   check_output_files({{a.out, "--out"}});

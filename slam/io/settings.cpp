@@ -95,40 +95,15 @@ const char* const kSections[] = {"tracking", "mapping", "semantics", "detection"
 // The top-level keys wardmap reads (ORB-SLAM3's): parse_settings's camera keys, then
 // load_front_options's ORBextractor and Stereo keys. A settings file may hold others (ORB-SLAM3's
 // viewer, IMU...), which are ignored; a --set of one would change nothing, so it is refused.
-const char* const kTopLevelKeys[] = {"Camera.type",
-                                     "Camera1.fx",
-                                     "Camera1.fy",
-                                     "Camera1.cx",
-                                     "Camera1.cy",
-                                     "Camera1.k1",
-                                     "Camera1.k2",
-                                     "Camera1.p1",
-                                     "Camera1.p2",
-                                     "Camera1.k3",
-                                     "Camera.fx",
-                                     "Camera.fy",
-                                     "Camera.cx",
-                                     "Camera.cy",
-                                     "Camera.k1",
-                                     "Camera.k2",
-                                     "Camera.p1",
-                                     "Camera.p2",
-                                     "Camera.k3",
-                                     "Camera.width",
-                                     "Camera.height",
-                                     "Camera.fps",
-                                     "Camera.RGB",
-                                     "RGBD.DepthMapFactor",
-                                     "DepthMapFactor",
-                                     "ORBextractor.nFeatures",
-                                     "ORBextractor.scaleFactor",
-                                     "ORBextractor.nLevels",
-                                     "ORBextractor.iniThFAST",
-                                     "ORBextractor.minThFAST",
-                                     "Stereo.b",
-                                     "Stereo.ThDepth",
-                                     "Camera.bf",
-                                     "ThDepth"};
+// clang-format off
+const char* const kTopLevelKeys[] = {
+    "Camera.type", "Camera1.fx", "Camera1.fy", "Camera1.cx", "Camera1.cy", "Camera1.k1", "Camera1.k2", "Camera1.p1",
+    "Camera1.p2", "Camera1.k3", "Camera.fx", "Camera.fy", "Camera.cx", "Camera.cy", "Camera.k1", "Camera.k2",
+    "Camera.p1", "Camera.p2", "Camera.k3", "Camera.width", "Camera.height", "Camera.fps", "Camera.RGB",
+    "RGBD.DepthMapFactor", "DepthMapFactor", "ORBextractor.nFeatures", "ORBextractor.scaleFactor",
+    "ORBextractor.nLevels", "ORBextractor.iniThFAST", "ORBextractor.minThFAST", "Stereo.b", "Stereo.ThDepth",
+    "Camera.bf", "ThDepth"};
+// clang-format on
 
 // ORB-SLAM3 keys wardmap does not read that are one letter from a key it does: not misspellings.
 const char* const kNotMisspellings[] = {"Camera1.k4", "Camera.k4"};

@@ -17,16 +17,18 @@ void check_range(T value, T lo, T hi, const char* key) {
 
 }  // namespace
 
-void PlaceOptions::validate() const {
-  check_range(branching, 2, 64, "place.branching");
-  check_range(levels, 1, 8, "place.levels");
-  check_range(max_iterations, 1, 1000, "place.max_iterations");
+void PlaceOptions::validate() const { validate(PlaceOptionNames{}); }
+
+void PlaceOptions::validate(const PlaceOptionNames& names) const {
+  check_range(branching, 2, 64, names.branching);
+  check_range(levels, 1, 8, names.levels);
+  check_range(max_iterations, 1, 1000, names.max_iterations);
   check_range(min_common_ratio, 0.0, 1.0, "place.min_common_ratio");
   const double max_words = 16777216.0;  // word ids and file sizes stay small
   if (std::pow(static_cast<double>(branching), levels) > max_words)
-    throw std::invalid_argument(
-        "place.levels: at most 16777216 words (place.branching to the power place.levels), got " +
-        std::to_string(branching) + "^" + std::to_string(levels));
+    throw std::invalid_argument(std::string(names.levels) + ": at most 16777216 words (" + names.branching +
+                                " to the power " + names.levels + "), got " + std::to_string(branching) + "^" +
+                                std::to_string(levels));
 }
 
 }  // namespace wardmap::slam::place
