@@ -14,9 +14,8 @@ void check_shape(const cv::Mat& m, int rows, int cols, const std::string& what) 
   const int n = m.dims == 3 ? m.size[1] : m.rows;
   const int c = m.dims == 3 ? m.size[2] : m.cols;
   if (m.type() != CV_32F || n != rows || c != cols)
-    throw std::runtime_error("detector: output '" + what + "' has shape " + std::to_string(n) + "x" +
-                             std::to_string(c) + ", expected " + std::to_string(rows) + "x" + std::to_string(cols) +
-                             " (does the model description match the ONNX file?)");
+    throw std::runtime_error("output '" + what + "' has shape " + std::to_string(n) + "x" + std::to_string(c) +
+                             ", expected " + std::to_string(rows) + "x" + std::to_string(cols));
 }
 
 int best_class(const float* scores, int n) { return static_cast<int>(std::max_element(scores, scores + n) - scores); }

@@ -24,17 +24,6 @@ const cv::Scalar kMean(0.485, 0.456, 0.406);
 const cv::Scalar kStd(0.229, 0.224, 0.225);
 }  // namespace
 
-Embedder::Embedder(const std::filesystem::path& onnx_file, int threads) {
-  if (threads < 1 || threads > 8)
-    throw std::invalid_argument("Embedder: threads must be in [1, 8], got " + std::to_string(threads));
-  // Rewritten for speed (onnx_net.h; OSNet: its 7 x 7 stem, 60 depthwise and 92 of its 1 x 1
-  // convolutions), the same for every copy.
-  for (int k = 0; k < threads; ++k)
-    nets_.push_back(load_onnx_net(
-        onnx_file, "embedding model not found (models/README.md says where to get OSNet x0.25)", rewrites_,
-        /*few_channel_convs=*/true));
-}
-
 namespace {
 
 // The embedding of `box` in a BGR 8-bit image, by `net` (Embedder::embed's contract).
@@ -65,8 +54,8 @@ Eigen::VectorXf embed_crop(cv::dnn::Net& net, const OnnxRewrites& rewrites, cons
                           : rewrites.restore_output(rewrites.transposed_outputs.front(),
                                                     net.forward(rewrites.transposed_outputs.front()));
   if (out.total() != static_cast<size_t>(Embedder::kDimension))
-    throw std::runtime_error("Embedder: expected a " + std::to_string(Embedder::kDimension) + "-d output, got " +
-                             std::to_string(out.total()));
+    throw std::runtime_error("expected a " + std::to_string(Embedder::kDimension) + "-d output, got " +
+                             std::to_string(out.total()) + " values");
   Eigen::VectorXf v = Eigen::Map<const Eigen::VectorXf>(out.ptr<float>(), Embedder::kDimension);
   const float norm = v.norm();
   if (norm > 0) v /= norm;
@@ -74,6 +63,27 @@ Eigen::VectorXf embed_crop(cv::dnn::Net& net, const OnnxRewrites& rewrites, cons
 }
 
 }  // namespace
+
+Embedder::Embedder(const std::filesystem::path& onnx_file, int threads) {
+  if (threads < 1 || threads > 8)
+    throw std::invalid_argument("Embedder: threads must be in [1, 8], got " + std::to_string(threads));
+  // Rewritten for speed (onnx_net.h; OSNet: its 7 x 7 stem, 60 depthwise and 92 of its 1 x 1
+  // convolutions), the same for every copy.
+  for (int k = 0; k < threads; ++k)
+    nets_.push_back(load_onnx_net(
+        onnx_file, "embedding model not found (models/README.md says where to get OSNet x0.25)", rewrites_,
+        /*few_channel_convs=*/true));
+  // One crop of a blank image: a file that is not an embedding model (another network, which
+  // cv::dnn may run on OSNet's input all the same) is refused here, naming it.
+  try {
+    embed_crop(nets_.front(), rewrites_, cv::Mat(kInputHeight, kInputWidth, CV_8UC3, cv::Scalar::all(0)),
+               Eigen::Vector4d(0, 0, kInputWidth, kInputHeight));
+  } catch (const cv::Exception& ex) {
+    throw InputError(onnx_file.string(), "the network does not run on OSNet's 128 x 256 input: " + ex.msg);
+  } catch (const std::runtime_error& ex) {
+    throw InputError(onnx_file.string(), std::string(ex.what()) + ": not OSNet x0.25 (models/README.md)?");
+  }
+}
 
 Eigen::VectorXf Embedder::embed(const cv::Mat& image, const Eigen::Vector4d& box) {
   return embed_crop(nets_.front(), rewrites_, to_bgr8(image), box);

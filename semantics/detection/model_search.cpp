@@ -21,9 +21,21 @@ std::vector<fs::path> model_search_path(const fs::path& models_dir) {
   return dirs;
 }
 
+namespace {
+
+// Whether `file` is a regular file; one that exists as something else (a folder) is an error, not a
+// reason to take another folder's copy without a word.
+bool is_model_file(const fs::path& file) {
+  if (fs::is_regular_file(file)) return true;
+  if (fs::exists(file)) throw InputError(file.string(), "is not a regular file (a folder?), not a model file");
+  return false;
+}
+
+}  // namespace
+
 fs::path find_model_file(const fs::path& relative, const fs::path& models_dir) {
   if (relative.is_absolute()) {
-    if (fs::is_regular_file(relative)) return relative;
+    if (is_model_file(relative)) return relative;
     throw InputError(relative.string(), "model file not found");
   }
   // A folder the user named (flag, settings or environment: all but the last, compiled-in place)
@@ -36,7 +48,7 @@ fs::path find_model_file(const fs::path& relative, const fs::path& models_dir) {
   std::string looked;
   for (const fs::path& dir : dirs) {
     const fs::path candidate = dir / relative;
-    if (fs::is_regular_file(candidate)) return candidate;
+    if (is_model_file(candidate)) return candidate;
     looked += (looked.empty() ? "" : ", ") + candidate.string();
   }
   throw InputError(

@@ -39,10 +39,19 @@ cv::dnn::Net net_from_bytes(const std::string& bytes, const std::filesystem::pat
   return read_checked(file, [&] { return cv::dnn::readNetFromONNX(bytes.data(), bytes.size()); });
 }
 
+// A model file that is not there (`missing_hint` says what it is and where to get it) or is empty
+// is named as such; OpenCV's message for an empty file is an assertion.
+void check_model_file(const std::filesystem::path& file, const std::string& missing_hint) {
+  if (!std::filesystem::is_regular_file(file)) throw InputError(file.string(), missing_hint);
+  std::error_code ec;
+  if (std::filesystem::file_size(file, ec) == 0 && !ec)
+    throw InputError(file.string(), "empty file, not an ONNX model (an interrupted download?)");
+}
+
 }  // namespace
 
 cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint) {
-  if (!std::filesystem::is_regular_file(file)) throw InputError(file.string(), missing_hint);
+  check_model_file(file, missing_hint);
   return read_checked(file, [&] { return cv::dnn::readNetFromONNX(file.string()); });
 }
 
@@ -55,7 +64,7 @@ cv::Mat OnnxRewrites::restore_output(const std::string& name, const cv::Mat& out
 cv::dnn::Net load_onnx_net(const std::filesystem::path& file, const std::string& missing_hint,
                            OnnxRewrites& rewrites, bool few_channel_convs) {
   rewrites = OnnxRewrites();
-  if (!std::filesystem::is_regular_file(file)) throw InputError(file.string(), missing_hint);
+  check_model_file(file, missing_hint);
   std::ifstream in(file, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in && !in.eof()) throw InputError(file.string(), "cannot read the ONNX model");

@@ -116,5 +116,30 @@ TEST(EmbedderFile, NotAnOnnxFileNamesIt) {
   }
 }
 
+TEST(EmbedderFile, EmptyFileNamesIt) {
+  const auto file = wardmap::test::scratch_dir() / "empty.onnx";
+  std::ofstream{file};
+  try {
+    Embedder e(file);
+    FAIL() << "no error";
+  } catch (const InputError& ex) {
+    EXPECT_EQ(ex.file(), file.string());
+    EXPECT_NE(std::string(ex.what()).find("empty file"), std::string::npos) << ex.what();
+  }
+}
+
+TEST(EmbedderFile, AnotherNetworkIsRefusedAtLoad) {
+  // YOLOX is fully convolutional: cv::dnn runs it on OSNet's input, and its output is no embedding.
+  WARDMAP_REQUIRE_MODEL("yolox-nano/yolox_nano_416x416.onnx");
+  const auto file = wardmap::test::shared_models_dir() / "yolox-nano/yolox_nano_416x416.onnx";
+  try {
+    Embedder e(file);
+    FAIL() << "no error";
+  } catch (const InputError& ex) {
+    EXPECT_EQ(ex.file(), file.string());
+    EXPECT_NE(std::string(ex.what()).find("expected a 512-d output"), std::string::npos) << ex.what();
+  }
+}
+
 }  // namespace
 }  // namespace wardmap::semantics

@@ -155,6 +155,19 @@ TEST(ModelSearch, MissingModelsFolderIsAnError) {
   EXPECT_THROW(find_embedder_file(absent), InputError);
 }
 
+TEST(ModelSearch, AFolderWhereTheModelShouldBeIsAnError) {
+  // Not a reason to go on to the next place of the search path and take its copy without a word.
+  const fs::path dir = wardmap::test::scratch_dir();
+  fs::create_directories(dir / "yolox-nano" / "yolox_nano_416x416.onnx");
+  try {
+    find_model_file("yolox-nano/yolox_nano_416x416.onnx", dir);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), (dir / "yolox-nano" / "yolox_nano_416x416.onnx").string());
+    EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ModelSearch, FactoryReportsMissingWeights) {
   const fs::path dir = wardmap::test::scratch_dir();
   std::ifstream in(default_model_description("yolox"));

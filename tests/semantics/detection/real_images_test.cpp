@@ -14,6 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "semantics/detection/detector_factory.h"
+#include "slam/core/errors.h"
 #include "tests/semantics/detection/detection_test_support.h"
 
 namespace wardmap::semantics {
@@ -165,6 +166,28 @@ TEST_P(RealPhotos, GreyImagesAreAccepted) {
 
 INSTANTIATE_TEST_SUITE_P(Detectors, RealPhotos, ::testing::Values("yolox", "nanodet"),
                          [](const auto& info) { return info.param; });
+
+TEST(DetectorFile, AnotherModelsWeightsAreRefusedAtLoad) {
+  // OSNet's weights where YOLOX's should be: the network runs on YOLOX's input, but its output is
+  // not YOLOX's. Refused when the detector is made, naming the weights and the description.
+  WARDMAP_REQUIRE_MODEL("osnet-x0_25/osnet_x0_25_msmt17.onnx");
+  const fs::path dir = wardmap::test::scratch_dir();
+  fs::create_directories(dir / "yolox-nano");
+  fs::copy_file(wardmap::test::shared_models_dir() / "osnet-x0_25/osnet_x0_25_msmt17.onnx", dir / model_file("yolox"),
+                fs::copy_options::overwrite_existing);
+  DetectorOptions o;
+  o.kind = "yolox";
+  o.models_dir = dir;
+  try {
+    make_detector(o);
+    FAIL() << "no error";
+  } catch (const InputError& ex) {
+    EXPECT_EQ(ex.file(), (dir / model_file("yolox")).string());
+    const std::string what = ex.what();
+    EXPECT_NE(what.find("has shape 1x512, expected 3549x85"), std::string::npos) << what;
+    EXPECT_NE(what.find("yolox-nano.yaml"), std::string::npos) << what;
+  }
+}
 
 }  // namespace
 }  // namespace wardmap::semantics
