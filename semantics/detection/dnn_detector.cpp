@@ -1,13 +1,13 @@
 #include "semantics/detection/dnn_detector.h"
 
-#include "semantics/detection/onnx_net.h"
-
 #include <algorithm>
+#include <exception>
 #include <map>
 
 #include "semantics/detection/class_nms.h"
 #include "semantics/detection/decoders.h"
 #include "semantics/detection/letterbox.h"
+#include "semantics/detection/onnx_net.h"
 #include "slam/core/errors.h"
 
 namespace wardmap::semantics {
@@ -42,7 +42,7 @@ DnnDetector::DnnDetector(ModelDescription model, const fs::path& onnx_file, cons
   } catch (const cv::Exception& ex) {
     throw InputError(onnx_file.string(),
                      "the network does not run on the input of " + model_.description_file.string() + ": " + ex.msg);
-  } catch (const std::runtime_error& ex) {
+  } catch (const std::exception& ex) {
     throw InputError(onnx_file.string(),
                      std::string(ex.what()) + ": not the model " + model_.description_file.string() + " describes?");
   }

@@ -80,7 +80,7 @@ Embedder::Embedder(const std::filesystem::path& onnx_file, int threads) {
                Eigen::Vector4d(0, 0, kInputWidth, kInputHeight));
   } catch (const cv::Exception& ex) {
     throw InputError(onnx_file.string(), "the network does not run on OSNet's 128 x 256 input: " + ex.msg);
-  } catch (const std::runtime_error& ex) {
+  } catch (const std::exception& ex) {
     throw InputError(onnx_file.string(), std::string(ex.what()) + ": not OSNet x0.25 (models/README.md)?");
   }
 }

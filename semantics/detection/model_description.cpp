@@ -183,6 +183,29 @@ LandmarkSets read_landmark_sets(const YAML::Node& node, const fs::path& file, co
   return sets;
 }
 
+// The file a description's `key` names (its class list, its landmark sets): an absolute path, or
+// relative to the description's folder, then to the project's descriptions (models/), then to the
+// models folders (model_search.h). So a description copied elsewhere to change one value still
+// finds the shipped files. Not found: an error naming the key, its line and every place looked in.
+fs::path referenced_file(const YAML::Node& root, const std::string& key, const fs::path& yaml_file,
+                         const fs::path& models_dir) {
+  const YAML::Node node = yaml_required(root, "", key, yaml_file);
+  const fs::path name = yaml_as<std::string>(node, key, yaml_file, "a file name");
+  std::vector<fs::path> places;
+  if (name.is_absolute()) {
+    places.push_back(name);
+  } else {
+    places = {yaml_file.parent_path() / name, model_descriptions_dir() / name};
+    for (const fs::path& dir : model_search_path(models_dir)) places.push_back(dir / name);
+  }
+  std::string looked;
+  for (const fs::path& place : places) {
+    if (fs::is_regular_file(place)) return place;
+    looked += (looked.empty() ? "" : ", ") + place.string();
+  }
+  throw InputError(yaml_file.string(), "key '" + key + "': file not found; looked in: " + looked, yaml_line(node));
+}
+
 }  // namespace
 
 std::vector<std::string> ModelDescription::class_to_landmark(const std::string& set) const {
@@ -215,22 +238,24 @@ ModelDescription load_model_description(const fs::path& yaml_file, const fs::pat
                      yaml_line(decoder));
   read_input(root, yaml_file, d.input);
   read_output(root, d.decoder, yaml_file, d.output);
-  for (int s : d.output.strides)
-    if (d.input.canvas_multiple > 0 && d.input.canvas_multiple % s != 0)
-      throw InputError(yaml_file.string(),
-                       "key 'input.canvas_multiple': " + std::to_string(d.input.canvas_multiple) +
-                           " is not a multiple of the output stride " + std::to_string(s),
-                       yaml_line(root["input"]["canvas_multiple"]));
+  // Each output level is the input divided by its stride, cell for cell.
+  const auto check_multiple = [&](const char* key, int value) {
+    for (int s : d.output.strides)
+      if (value % s != 0)
+        throw InputError(yaml_file.string(),
+                         std::string("key 'input.") + key + "': " + std::to_string(value) +
+                             " is not a multiple of the output stride " + std::to_string(s),
+                         yaml_line(root["input"][key]));
+  };
+  check_multiple("width", d.input.width);
+  check_multiple("height", d.input.height);
+  if (d.input.canvas_multiple > 0) check_multiple("canvas_multiple", d.input.canvas_multiple);
 
-  const YAML::Node classes = yaml_required(root, "", "classes", yaml_file);
-  const fs::path class_file = yaml_as<std::string>(classes, "classes", yaml_file, "a file name");
-  const fs::path beside = yaml_file.parent_path() / class_file;
-  d.classes = read_class_list(fs::is_regular_file(beside) ? beside : find_model_file(class_file, models_dir));
+  d.classes = read_class_list(referenced_file(root, "classes", yaml_file, models_dir));
 
   const YAML::Node sets = yaml_required(root, "", "landmark_sets", yaml_file);
   if (sets.IsScalar()) {
-    const fs::path sets_file =
-        yaml_file.parent_path() / yaml_as<std::string>(sets, "landmark_sets", yaml_file, "a file");
+    const fs::path sets_file = referenced_file(root, "landmark_sets", yaml_file, models_dir);
     // The shared file has the same shape as the inline form: a top-level `landmark_sets:` mapping.
     const YAML::Node shared = load_yaml(sets_file);
     reject_unknown_keys(shared, "", {"landmark_sets"}, sets_file);

@@ -106,6 +106,12 @@ TEST(ModelDescription, ErrorsNameTheKey) {
   EXPECT_NE(error_of_description("decoder: nanodet", "decoder: nanodet\ndecodr: yolox")
                 .find("key 'decodr': not a known key (did you mean 'decoder'?)"),
             std::string::npos);
+  EXPECT_NE(error_of_description("width: 320", "width: 324")
+                .find("key 'input.width': 324 is not a multiple of the output stride 8"),
+            std::string::npos);
+  EXPECT_NE(error_of_description("classes: coco80.names", "classes: coco81.names")
+                .find(":20: key 'classes': file not found; looked in: "),
+            std::string::npos);
   const std::string e = error_of_description("classes: coco80.names", "classes: coco80.names\n# x");
   EXPECT_EQ(e, "(no error)");
   // A landmark mapping from a class the detector does not have.
@@ -122,6 +128,15 @@ TEST(ModelDescription, ErrorsNameTheKey) {
   } catch (const InputError& ex) {
     EXPECT_NE(std::string(ex.what()).find("key 'landmark_sets.indoor.dining tabel'"), std::string::npos) << ex.what();
   }
+}
+
+TEST(ModelDescription, ACopyElsewhereFindsTheShippedClassListAndLandmarkSets) {
+  // Copied to change one value: its relative `classes` and `landmark_sets` are not beside it.
+  const fs::path dir = wardmap::test::scratch_dir();
+  fs::copy_file(default_model_description("yolox"), dir / "mine.yaml");
+  const ModelDescription m = load_model_description(dir / "mine.yaml");
+  EXPECT_EQ(m.classes.size(), 80u);
+  EXPECT_EQ(m.class_to_landmark("road")[2], "vehicle");
 }
 
 TEST(ModelSearch, MissingModelNamesEveryPlaceSearched) {
