@@ -3,9 +3,11 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <mutex>
 #include <set>
 
@@ -24,6 +26,17 @@ CLI::Validator positive_number() {
         return {};
       },
       "POSITIVE");
+}
+
+CLI::Validator png_file() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::string ext = std::filesystem::path(text).extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+        if (ext != ".png") return "writes a PNG: give a file name ending in .png, got '" + text + "'";
+        return {};
+      },
+      "FILE.png");
 }
 
 CLI::Validator whole_number(unsigned long long min) {

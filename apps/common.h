@@ -20,6 +20,8 @@ namespace wardmap::apps {
 CLI::Validator positive_number();
 // A whole number, digits only, at least `min` (frame counts and indices, seeds):
 CLI::Validator whole_number(unsigned long long min = 0);
+// A file name ending in .png (any case), for options that write a PNG whatever the name says:
+CLI::Validator png_file();
 
 // Throws InputError naming the first of `files` missing from the run folder `run`: a run folder
 // without objects (a SLAM run without --objects) is told so, any other folder is asked about.

@@ -161,7 +161,8 @@ void add_eval_command(CLI::App& app) {
   cmd->add_option("--est-format", args->est_format, "Format of the estimate file")->capture_default_str()
       ->check(CLI::IsMember({"auto", "tum", "kitti"}));
   cmd->add_option("--json", args->json, "Write the figures as JSON to this file");
-  cmd->add_option("--plot", args->plot, "Draw the aligned estimate over the ground truth (top view) to this PNG");
+  cmd->add_option("--plot", args->plot, "Draw the aligned estimate over the ground truth (top view) to this PNG")
+      ->check(png_file());
   cmd->add_option("--errors", args->errors,
                   "Write each pose pair's error after the alignment to this CSV: timestamp, ATE (m), its x/y/z "
                   "components (m, ground-truth frame) and the rotation error (deg)");

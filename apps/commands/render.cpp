@@ -48,7 +48,7 @@ void add_render_command(CLI::App& app) {
       "Needs an X display (VTK); without one run it under a virtual display:\n"
       "  xvfb-run -a -s \"-screen 0 1280x1024x24\" wardmap render-map RUN_DIR --out map.png");
   cmd->add_option("map", a->input, "Run folder (uses its map.glb) or a .glb file")->required();
-  cmd->add_option("--out", a->out, "PNG file to write")->required();
+  cmd->add_option("--out", a->out, "PNG file to write")->required()->check(png_file());
   cmd->add_option("--width", a->width, "Picture width in pixels")->capture_default_str()->check(CLI::Range(16, 16384));
   cmd->add_option("--height", a->height, "Picture height in pixels")->capture_default_str()->check(CLI::Range(16, 16384));
   cmd->add_option("--view", a->view, "top (straight down, world x to the right) or oblique (from above and in front)")

@@ -1,7 +1,5 @@
 #include "slam/eval/trajectory_plot.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "slam/core/errors.h"
+#include "slam/io/text_file.h"
 
 namespace wardmap::slam::eval {
 
@@ -105,16 +104,8 @@ cv::Mat plot_top_view(const std::vector<PlotSeries>& series, const std::string& 
 void save_png(const std::filesystem::path& file, const cv::Mat& image) {
   std::vector<uchar> buf;
   if (!cv::imencode(".png", image, buf)) throw InputError(file.string(), "cannot encode the PNG");
-  const std::filesystem::path tmp = file.string() + ".tmp." + std::to_string(::getpid()) + ".png";
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
-  FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) throw InputError(file.string(), "cannot write the plot");
-  const bool ok = std::fwrite(buf.data(), 1, buf.size(), f) == buf.size();
-  if (std::fclose(f) != 0 || !ok) {
-    std::filesystem::remove(tmp);
-    throw InputError(file.string(), "write failed");
-  }
-  std::filesystem::rename(tmp, file);
+  io::write_file_atomic(file, std::string(buf.begin(), buf.end()));
 }
 
 }  // namespace wardmap::slam::eval

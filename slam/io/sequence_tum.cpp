@@ -25,7 +25,11 @@ std::vector<TimedPath> read_index(const fs::path& root, const char* name) {
   double previous = -std::numeric_limits<double>::infinity();
   for_each_data_line(file, false, [&](long line, const std::vector<std::string>& tok) {
     if (tok.size() != 2)
-      throw InputError(file.string(), "expected 'timestamp path', got " + std::to_string(tok.size()) + " fields", line);
+      throw InputError(file.string(),
+                       "expected 'timestamp path', got " + std::to_string(tok.size()) +
+                           (tok.size() == 1 ? " field" : " fields") +
+                           (tok.size() > 2 ? " (a file name with a space in it? The format has none)" : ""),
+                       line);
     const double t = parse_double(tok[0], file, line, "timestamp");
     check_increasing(t, previous, file, line);
     previous = t;

@@ -86,6 +86,12 @@ TEST(CliBadInput, NumericOptionsSayWhatIsWrongInOneLine) {
            {"run " + shq(root) + " --out " + shq(root / "out") + " --frames 0",
             "--frames: expected a whole number from 1, got '0'"},
            {"eval --gt " + shq(root) + " --est x --max-dt -1", "--max-dt: must be a number above 0, got -1"},
+           // Before: PNG data written under the name given.
+           {"eval --gt " + shq(root) + " --est x --plot " + shq(root / "out" / "plot.jpg"),
+            "--plot: writes a PNG: give a file name ending in .png, got '" + (root / "out" / "plot.jpg").string() +
+                "'"},
+           {"render-map " + shq(root) + " --out " + shq(root / "out" / "map.jpg"),
+            "--out: writes a PNG: give a file name ending in .png, got '" + (root / "out" / "map.jpg").string() + "'"},
            // Before: named by a settings key that no settings file has (place.branching).
            {"vocabulary train " + shq(root) + " --out " + shq(root / "out") + " --k 1",
             "--k must be in [2, 64], got 1"}}) {

@@ -291,8 +291,12 @@ std::string error_of(const fs::path& root, size_t frame = 0) {
 TEST(BadInput, MalformedLineNamesFileAndLine) {
   const fs::path root = scratch_dir();
   test::make_tum(root);
-  write_text(root / "rgb.txt", "# c\n1.0 rgb/0.png\n1.03 rgb/1.png extra\n");
-  EXPECT_EQ(error_of(root), (root / "rgb.txt").string() + ":3: expected 'timestamp path', got 3 fields");
+  write_text(root / "rgb.txt", "# c\n1.0 rgb/0.png\n1.03 rgb/my 1.png\n");
+  EXPECT_EQ(error_of(root), (root / "rgb.txt").string() +
+                                ":3: expected 'timestamp path', got 3 fields (a file name with a space in it? "
+                                "The format has none)");
+  write_text(root / "rgb.txt", "1.0 rgb/0.png\n1.03\n");
+  EXPECT_EQ(error_of(root), (root / "rgb.txt").string() + ":2: expected 'timestamp path', got 1 field");
   write_text(root / "rgb.txt", "1.0 rgb/0.png\nabc rgb/1.png\n");
   EXPECT_EQ(error_of(root), (root / "rgb.txt").string() + ":2: timestamp: 'abc' is not a number");
 }
