@@ -149,7 +149,7 @@ std::string scale_drift_text(const slam::eval::ScaleDriftResult& drift) {
 
 std::string settings_notes_text(const std::vector<std::string>& notes) {
   std::string text;
-  for (const std::string& note : notes) text += "  - not read: " + note + "\n";
+  for (const std::string& note : notes) text += "  - note: " + note + "\n";
   return text;
 }
 

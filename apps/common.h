@@ -57,7 +57,7 @@ std::vector<slam::io::SettingOverride> parse_set_options(const std::vector<std::
 // Logs a warning for each of the settings' notes (keys not read that look meant), each once per
 // process: a SLAM run with --objects and `compare` read one file more than once.
 void warn_settings_notes(const slam::io::Settings& settings);
-// The notes as report.md lists them under its settings line ("  - not read: NOTE" lines); empty
+// The notes as report.md lists them under its settings line ("  - note: NOTE" lines); empty
 // without notes.
 std::string settings_notes_text(const std::vector<std::string>& notes);
 

@@ -125,6 +125,9 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
     slam::io::blame_overrides(job.settings_overrides,
                               [&] { settings = slam::io::load_settings(job.settings, job.settings_overrides); });
   if (settings) {
+    if (auto note = slam::io::fit_calibration_size(settings->camera.camera, info.width, info.height,
+                                                   job.settings.string(), job.settings_overrides))
+      settings->notes.push_back(*note);
     warn_settings_notes(*settings);
     setup->settings_notes = settings->notes;
   }
@@ -142,9 +145,8 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
   if (settings) camera = settings->camera.camera;
   else if (info.calibration) camera = *info.calibration;
   else
-    throw InputError(job.sequence.string(), "no calibration: the dataset carries none; give --settings (see data/settings/)");
-  slam::io::check_calibration_size(camera, info.width, info.height,
-                                   settings ? job.settings.string() : info.calibration_source, job.settings_overrides);
+    throw InputError(job.sequence.string(),
+                     "no calibration: the dataset carries none; give --settings (see data/settings/)");
 
   semantics::SemanticOptions& options = setup->options;
   semantics::DetectorOptions det;

@@ -143,6 +143,9 @@ double run_slam_job(const SlamJob& job) {
     settings = slam::io::load_settings(settings_file, job.settings_overrides);
     options = slam::load_front_options(settings);
   });
+  if (auto note = slam::io::fit_calibration_size(settings.camera.camera, info.width, info.height,
+                                                 settings_file.string(), job.settings_overrides))
+    settings.notes.push_back(*note);
   warn_settings_notes(settings);
   if (settings.camera.depth_map_factor) reader->set_depth_factor(*settings.camera.depth_map_factor);
   const std::string mode = job.mode.empty() ? (info.has_depth ? "rgbd" : "mono") : job.mode;
@@ -154,7 +157,6 @@ double run_slam_job(const SlamJob& job) {
   if (job.realtime && job.deterministic)
     throw InputError("--realtime", "paces the input for the mapper thread, which --deterministic does not run");
   const auto& cam = settings.camera.camera;
-  slam::io::check_calibration_size(cam, info.width, info.height, settings_file.string(), job.settings_overrides);
 
   slam::FrontProcess front(options, cam);
   const fs::path vocabulary_file = find_vocabulary(job.vocabulary);

@@ -60,8 +60,9 @@ void run_info(const InfoArgs& a) {
   std::optional<slam::io::Settings> settings;
   if (!settings_file.empty()) {
     settings = check_settings(settings_file, overrides);
-    const auto& c = settings->camera.camera;
-    slam::io::check_calibration_size(c, in.width, in.height, settings_file.string(), overrides);
+    if (auto note = slam::io::fit_calibration_size(settings->camera.camera, in.width, in.height, settings_file.string(),
+                                                   overrides))
+      settings->notes.push_back(*note);
   }
 
   std::string calib;
@@ -98,7 +99,7 @@ void run_info(const InfoArgs& a) {
   if (settings) {
     std::printf("settings:      %s%s: valid (camera, tracking, mapping, semantics, detection)%s\n",
                 settings_file.c_str(), overrides_text(overrides).c_str(),
-                settings->notes.empty() ? "" : ", but ignores:");
+                settings->notes.empty() ? "" : ", with notes:");
     for (const std::string& note : settings->notes) std::printf("               %s\n", note.c_str());
   }
 

@@ -86,8 +86,8 @@ Frame SequenceReader::read(size_t i) {
   return f;
 }
 
-void SequenceReader::set_calibration(const PinholeCamera& camera, const std::string& source) {
-  check_calibration_size(camera, info_.width, info_.height, source);
+void SequenceReader::set_calibration(PinholeCamera camera, const std::string& source) {
+  if (auto note = fit_calibration_size(camera, info_.width, info_.height, source)) add_note(*note);
   info_.calibration = camera;
   info_.calibration_source = source;
 }

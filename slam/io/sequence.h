@@ -85,8 +85,9 @@ class SequenceReader {
   }
   // The ground-truth trajectory as the dataset gives it (may be denser than the frames).
   const Trajectory& ground_truth() const { return ground_truth_; }
-  // Calibration found beside the dataset (a settings.yaml in its folder); the image size must match.
-  void set_calibration(const PinholeCamera& camera, const std::string& source);
+  // Calibration found beside the dataset (a settings.yaml in its folder), fitted to the images' size
+  // (fit_calibration_size; a note when it differed a little).
+  void set_calibration(PinholeCamera camera, const std::string& source);
   // Keeps `count` frames from frame `first` (0: to the end), renumbered from 0 with their own
   // timestamps, and the ground truth within their time span (half a frame period either side), so
   // that a run and its evaluation see the stretch alone. Throws InputError naming the sequence when

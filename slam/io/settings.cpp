@@ -276,16 +276,25 @@ void blame_overrides(const std::vector<SettingOverride>& overrides, const std::f
   }
 }
 
-void check_calibration_size(const PinholeCamera& camera, int width, int height, const std::string& source,
-                            const std::vector<SettingOverride>& overrides) {
-  if (camera.width == width && camera.height == height) return;
+std::optional<std::string> fit_calibration_size(PinholeCamera& camera, int width, int height, const std::string& source,
+                                                const std::vector<SettingOverride>& overrides) {
+  if (camera.width == width && camera.height == height) return std::nullopt;
   std::string blamed = source;
   for (const SettingOverride& o : overrides)
     if ((o.key == "Camera.width" && camera.width != width) || (o.key == "Camera.height" && camera.height != height))
       blamed = "--set " + o.key + "=" + o.value;
-  throw InputError(blamed, "Camera.width/height " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
-                               " do not match the sequence's images " + std::to_string(width) + "x" +
-                               std::to_string(height));
+  const std::string sizes = "Camera.width/height " + std::to_string(camera.width) + "x" + std::to_string(camera.height);
+  const std::string images = "the sequence's images " + std::to_string(width) + "x" + std::to_string(height);
+  const auto near = [](int a, int b) { return std::abs(a - b) <= kCalibrationSizeTolerance * b; };
+  if (!near(camera.width, width) || !near(camera.height, height))
+    throw InputError(blamed, sizes + " do not match " + images);
+  PinholeCamera fitted = camera;
+  fitted.width = width;
+  fitted.height = height;
+  if (auto err = fitted.validate())
+    throw InputError(blamed, sizes + " are close to " + images + ", but on them: " + *err);
+  camera = fitted;
+  return blamed + ": " + sizes + " differ from " + images + " by at most 2 %: the images' size is used";
 }
 
 namespace {

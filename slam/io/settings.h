@@ -29,7 +29,8 @@ struct Settings {
   YAML::Node root;  // the whole document, for the modules' own sections
   // Top-level keys that look meant to change something but are not read: a misspelling of a key
   // wardmap reads, an ORB-SLAM3 key of processing wardmap does not do (a resized image, a stereo
-  // rig's second camera). Each names its key and line; a run logs them as warnings.
+  // rig's second camera). Each names its key and line; a run logs them as warnings. The commands
+  // add the note of fit_calibration_size when the images' size replaced a slightly different one.
   std::vector<std::string> notes;
   // A wardmap section (e.g. "tracking"); an undefined node when absent.
   YAML::Node section(const std::string& name) const { return root[name]; }
@@ -58,10 +59,15 @@ void apply_setting_overrides(YAML::Node& root, const std::vector<SettingOverride
 // than the file; any other error passes unchanged.
 void blame_overrides(const std::vector<SettingOverride>& overrides, const std::function<void()>& load);
 
-// Throws an InputError when `camera`'s image size is not the sequence's `width` x `height`: at the
+// Fits `camera`'s image size to the sequence's `width` x `height`. A size off by at most
+// kCalibrationSizeTolerance of each side is a rounding or a crop of a pixel or two (ORB-SLAM3's
+// KITTI03.yaml says 1241x376 for 1242x375 images, and ORB-SLAM3 takes the image bounds from the
+// images): the images' size is taken, and a note saying so is returned. The principal point must
+// still lie inside. Further off, the calibration is for another resolution: an InputError at the
 // --set that gave Camera.width or Camera.height when one did, else at `source` (the settings file).
-void check_calibration_size(const PinholeCamera& camera, int width, int height, const std::string& source,
-                            const std::vector<SettingOverride>& overrides = {});
+inline constexpr double kCalibrationSizeTolerance = 0.02;
+std::optional<std::string> fit_calibration_size(PinholeCamera& camera, int width, int height, const std::string& source,
+                                                const std::vector<SettingOverride>& overrides = {});
 
 // Loads and validates, with `overrides` set over the file's keys first; accepts OpenCV's `%YAML:1.0`
 // header. Throws InputError naming the file and the key (and the line for YAML syntax errors).

@@ -782,7 +782,7 @@ TEST(CliPipeline, SetOverridesASettingForOneRun) {
     ASSERT_EQ(notes.size(), 1u) << report;
     EXPECT_NE(notes[0].get<std::string>().find(warning), std::string::npos) << report;
   }
-  EXPECT_NE(read_all(dir / "typo" / "report.md").find("  - not read: "), std::string::npos);
+  EXPECT_NE(read_all(dir / "typo" / "report.md").find("  - note: "), std::string::npos);
 
   expect_one_line_error(wardmap_cli(run + " --set tracking.flow_extnd_mono=false"),
                         "--set tracking.flow_extnd_mono=false: key 'tracking.flow_extnd_mono': not a key of section "

@@ -155,10 +155,14 @@ TEST(Settings, CalibrationSizeChecked) {
   PinholeCamera c;
   c.width = 640;
   c.height = 480;
-  EXPECT_NO_THROW(check_calibration_size(c, 640, 480, "s.yaml"));
+  c.cx = 320;
+  c.cy = 240;
+  c.fx = c.fy = 500;
+  EXPECT_EQ(fit_calibration_size(c, 640, 480, "s.yaml"), std::nullopt);
   const auto error_of = [&](const std::vector<SettingOverride>& set) {
     try {
-      check_calibration_size(c, 64, 480, "s.yaml", set);
+      PinholeCamera copy = c;
+      fit_calibration_size(copy, 64, 480, "s.yaml", set);
     } catch (const InputError& e) {
       return std::string(e.what());
     }
@@ -170,6 +174,41 @@ TEST(Settings, CalibrationSizeChecked) {
   // A --set of the size that agrees with the sequence is not the one to blame.
   EXPECT_EQ(error_of({parse_setting_override("Camera.height=480")}),
             "s.yaml: Camera.width/height 640x480 do not match the sequence's images 64x480");
+}
+
+// ORB-SLAM3's KITTI03.yaml says 1241x376 for 1242x375 images: a size within 2 % of each side is
+// taken from the images, with a note; the principal point must still lie inside.
+TEST(Settings, CalibrationSizeOffByAPixelIsTakenFromTheImages) {
+  PinholeCamera c;
+  c.width = 1241;
+  c.height = 376;
+  c.fx = c.fy = 721.5377;
+  c.cx = 609.5593;
+  c.cy = 172.854;
+  const auto note = fit_calibration_size(c, 1242, 375, "KITTI03.yaml");
+  ASSERT_TRUE(note.has_value());
+  EXPECT_EQ(*note,
+            "KITTI03.yaml: Camera.width/height 1241x376 differ from the sequence's images 1242x375 by at most 2 %: "
+            "the images' size is used");
+  EXPECT_EQ(c.width, 1242);
+  EXPECT_EQ(c.height, 375);
+  // 3 % off: a calibration for another resolution.
+  c.width = 1280;
+  EXPECT_THROW(fit_calibration_size(c, 1242, 375, "KITTI03.yaml"), InputError);
+  EXPECT_EQ(c.width, 1280);  // left as it was
+  // Close, but the principal point falls outside the images.
+  c.width = 640;
+  c.height = 480;
+  c.cx = 639.5;
+  c.cy = 240;
+  try {
+    fit_calibration_size(c, 630, 480, "s.yaml");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "s.yaml: Camera.width/height 640x480 are close to the sequence's images 630x480, but on them: cx must "
+              "lie inside the image width 630 (got 639.5)");
+  }
 }
 
 TEST(Settings, ShippedFilesLoad) {
