@@ -153,6 +153,11 @@ std::string settings_notes_text(const std::vector<std::string>& notes) {
   return text;
 }
 
+std::string enclosing_dataset_note(const std::filesystem::path& sequence) {
+  const std::string hint = slam::io::enclosing_dataset_hint(sequence);
+  return hint.empty() ? hint : "; " + hint;
+}
+
 void warn_settings_notes(const slam::io::Settings& settings) {
   static std::mutex mutex;
   static std::set<std::string> warned;

@@ -57,6 +57,10 @@ std::vector<slam::io::SettingOverride> parse_set_options(const std::vector<std::
 // Logs a warning for each of the settings' notes (keys not read that look meant), each once per
 // process: a SLAM run with --objects and `compare` read one file more than once.
 void warn_settings_notes(const slam::io::Settings& settings);
+
+// "; " and slam::io::enclosing_dataset_hint(sequence) when there is one, else "": for errors about a
+// path given as a sequence that is a part of one (an image folder without calibration).
+std::string enclosing_dataset_note(const std::filesystem::path& sequence);
 // The notes as report.md lists them under its settings line ("  - note: NOTE" lines); empty
 // without notes.
 std::string settings_notes_text(const std::vector<std::string>& notes);

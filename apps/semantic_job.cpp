@@ -146,7 +146,8 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
   else if (info.calibration) camera = *info.calibration;
   else
     throw InputError(job.sequence.string(),
-                     "no calibration: the dataset carries none; give --settings (see data/settings/)");
+                     "no calibration: the dataset carries none; give --settings (see data/settings/)" +
+                         enclosing_dataset_note(job.sequence));
 
   semantics::SemanticOptions& options = setup->options;
   semantics::DetectorOptions det;
@@ -192,11 +193,13 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
   if (!job.keyframes && !info.has_ground_truth)
     throw InputError(job.sequence.string(),
                      "--poses gt needs ground-truth poses, and this sequence has none" +
-                         (info.ground_truth_unmatched.empty() ? "" : ": " + info.ground_truth_unmatched));
+                         (info.ground_truth_unmatched.empty() ? "" : ": " + info.ground_truth_unmatched) +
+                         enclosing_dataset_note(job.sequence));
   if (!job.keyframes && !info.has_depth)  // every measurement would go without a pose
     throw InputError(job.sequence.string(),
                      "--poses gt measures objects from depth images, and this sequence has none "
-                     "(monocular: --poses slam --mode mono --objects)");
+                     "(monocular: --poses slam --mode mono --objects)" +
+                         enclosing_dataset_note(job.sequence));
   std::unique_ptr<SemanticSetup> own_setup;
   SemanticSetup* setup = job.setup;
   if (!setup) setup = (own_setup = prepare_semantic_job(job)).get();

@@ -133,7 +133,8 @@ double run_slam_job(const SlamJob& job) {
   if (settings_file.empty()) {
     settings_file = default_settings(info);
     if (settings_file.empty())
-      throw InputError(job.sequence.string(), "no calibration: give --settings (see data/settings/)");
+      throw InputError(job.sequence.string(),
+                       "no calibration: give --settings (see data/settings/)" + enclosing_dataset_note(job.sequence));
     if (settings_file != info.root / "settings.yaml")
       spdlog::info("settings: {} (shipped for this dataset; --settings to give others)", settings_file.string());
   }
@@ -150,7 +151,8 @@ double run_slam_job(const SlamJob& job) {
   if (settings.camera.depth_map_factor) reader->set_depth_factor(*settings.camera.depth_map_factor);
   const std::string mode = job.mode.empty() ? (info.has_depth ? "rgbd" : "mono") : job.mode;
   if (mode == "rgbd" && !info.has_depth)
-    throw InputError(job.sequence.string(), "--mode rgbd needs depth images, and this sequence has none");
+    throw InputError(job.sequence.string(), "--mode rgbd needs depth images, and this sequence has none" +
+                                                enclosing_dataset_note(job.sequence));
   options.monocular = mode == "mono";
   reader->set_decode_depth(!options.monocular);  // the monocular front-process never reads depth
   options.mapping_thread = !job.deterministic;

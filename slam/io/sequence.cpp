@@ -193,11 +193,31 @@ static bool has_video_extension(const fs::path& p) {
   return ext == ".mp4" || ext == ".avi" || ext == ".mkv" || ext == ".mov" || ext == ".webm" || ext == ".mpg";
 }
 
+std::string enclosing_dataset_hint(const fs::path& path) {
+  // Up to three levels: KITTI's sequences/03/image_0, EuRoC's mav0/cam0/data, a TUM rgb/ folder.
+  fs::path dir = fs::absolute(path).lexically_normal();
+  if (dir.has_filename() == false) dir = dir.parent_path();  // a trailing slash
+  for (int level = 0; level < 3 && dir.has_parent_path() && dir.parent_path() != dir; ++level) {
+    dir = dir.parent_path();
+    try {
+      const DatasetKind kind = detect_dataset_kind(dir);
+      if (kind != DatasetKind::ImageFolder && kind != DatasetKind::Video)
+        return "it is inside the " + to_string(kind) + " sequence " + dir.string() +
+               ": give that folder to read what it holds (timestamps, calibration, depth, ground truth)";
+    } catch (const InputError&) {
+      // not a dataset: look one level up
+    }
+  }
+  return "";
+}
+
 DatasetKind detect_dataset_kind(const fs::path& path) {
   if (!fs::exists(path)) throw InputError(path.string(), "no such file or folder");
   if (fs::is_regular_file(path)) {
     if (has_video_extension(path)) return DatasetKind::Video;
-    throw InputError(path.string(), "a file that is not a video (.mp4 .avi .mkv .mov .webm .mpg); give a dataset folder");
+    const std::string hint = enclosing_dataset_hint(path);
+    throw InputError(path.string(), "a file that is not a video (.mp4 .avi .mkv .mov .webm .mpg); " +
+                                        (hint.empty() ? std::string("give a dataset folder") : hint));
   }
   if (fs::exists(path / "rgb.txt")) return DatasetKind::TumRgbd;
   if (fs::exists(path / "mav0") || fs::exists(path / "cam0" / "data.csv")) return DatasetKind::Euroc;
@@ -220,6 +240,8 @@ std::unique_ptr<SequenceReader> open_sequence(const fs::path& path, const Reader
   if (!fs::exists(path)) throw InputError(path.string(), "no such file or folder");
   const DatasetKind kind = options.kind ? *options.kind : detect_dataset_kind(path);
   std::unique_ptr<SequenceReader> reader = open_by_kind(kind, path, options);
+  if (kind == DatasetKind::ImageFolder && !options.kind)
+    if (const std::string hint = enclosing_dataset_hint(path); !hint.empty()) reader->add_note(hint);
   if (options.depth_factor) reader->set_depth_factor(*options.depth_factor);
   // A settings file inside the sequence folder (wardmap synth writes one) is its calibration.
   const fs::path settings = fs::is_directory(path) ? path / "settings.yaml" : fs::path();

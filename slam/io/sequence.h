@@ -88,6 +88,8 @@ class SequenceReader {
   // Calibration found beside the dataset (a settings.yaml in its folder), fitted to the images' size
   // (fit_calibration_size; a note when it differed a little).
   void set_calibration(PinholeCamera camera, const std::string& source);
+  // Appends to info_.notes ("; " between notes).
+  void add_note(const std::string& note) { info_.notes += (info_.notes.empty() ? "" : "; ") + note; }
   // Keeps `count` frames from frame `first` (0: to the end), renumbered from 0 with their own
   // timestamps, and the ground truth within their time span (half a frame period either side), so
   // that a run and its evaluation see the stretch alone. Throws InputError naming the sequence when
@@ -115,8 +117,6 @@ class SequenceReader {
   // and the last are noted ("3 of frames 0-99 have no <what>"), not taken for the end.
   using NumberedImages = std::vector<std::pair<size_t, std::filesystem::path>>;
   void sort_numbered_images(NumberedImages& images, const std::string& what);
-  // Appends to info_.notes ("; " between notes).
-  void add_note(const std::string& note) { info_.notes += (info_.notes.empty() ? "" : "; ") + note; }
   // frame_count, fps, duration and the ground-truth counts of info_ from entries_.
   void update_counts();
   // Attaches to each entry the ground-truth pose closest in time within max_dt.
@@ -133,6 +133,11 @@ class SequenceReader {
 // Throws InputError (unknown layout, malformed index files, missing files) naming the file.
 std::unique_ptr<SequenceReader> open_sequence(const std::filesystem::path& path, const ReaderOptions& options = {});
 DatasetKind detect_dataset_kind(const std::filesystem::path& path);
+// When `path` (a file, an image folder) lies up to three levels inside a folder of a dataset layout
+// (KITTI's sequences/03/image_0, a TUM sequence's rgb/ or rgb.txt, a 7-Scenes frame): "it is inside
+// the <kind> sequence <folder>: give that folder, ...", for the errors and notes that a path meant as
+// that sequence gets; else "".
+std::string enclosing_dataset_hint(const std::filesystem::path& path);
 
 // One per layout (sequence_*.cpp).
 std::unique_ptr<SequenceReader> open_tum(const std::filesystem::path& root, const ReaderOptions& o);

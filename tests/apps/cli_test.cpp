@@ -246,6 +246,18 @@ TEST(CliBadInput, UnknownLayout) {
   expect_one_line_error(wardmap_cli("info " + shq(root / "absent")), "no such file or folder");
 }
 
+TEST(CliBadInput, APartOfADatasetNamesTheDataset) {
+  const fs::path root = scratch_dir();
+  make_tum(root);
+  const std::string hint = "; it is inside the TUM RGB-D sequence " + fs::absolute(root).lexically_normal().string();
+  for (const char* poses : {"slam", "gt"}) {
+    // An image folder of a dataset: no calibration of its own, no ground truth.
+    const CliResult r = wardmap_cli("run " + shq(root / "rgb") + " --poses " + poses + " --out " + shq(root / "out"));
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find(hint), std::string::npos) << r.output;
+  }
+}
+
 TEST(CliBadInput, OutIsAFile) {
   const fs::path root = scratch_dir();
   make_tum(root);

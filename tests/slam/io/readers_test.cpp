@@ -277,6 +277,36 @@ TEST(SequenceDetection, FormatOverridesAndUnknownLayoutFails) {
   EXPECT_THROW(open_sequence(root / "nope"), InputError);
 }
 
+// A part of a dataset given for the dataset: a file in it is refused, an image folder in it is read
+// as an image folder; both name the dataset's folder.
+TEST(SequenceDetection, APartOfADatasetNamesTheDataset) {
+  const fs::path scratch = scratch_dir(), root = scratch / "tum";
+  test::make_tum(root);
+  const std::string hint =
+      "it is inside the TUM RGB-D sequence " + fs::absolute(root).lexically_normal().string() + ": give that folder";
+  try {
+    open_sequence(root / "rgb.txt");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("a file that is not a video"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(hint), std::string::npos) << e.what();
+  }
+  const auto folder = open_sequence(root / "rgb");
+  EXPECT_EQ(folder->info().kind, DatasetKind::ImageFolder);
+  EXPECT_NE(folder->info().notes.find(hint), std::string::npos) << folder->info().notes;
+  // KITTI's image_0, two levels down from the layout's root and one from its sequence.
+  const fs::path kitti = scratch / "kitti";
+  test::make_kitti(kitti);
+  EXPECT_NE(enclosing_dataset_hint(kitti / "sequences" / "05" / "image_0")
+                .find("inside the KITTI odometry sequence " + fs::absolute(kitti / "sequences" / "05").string()),
+            std::string::npos);
+  // A folder of images of its own, and a forced kind, get no note.
+  EXPECT_EQ(enclosing_dataset_hint(root), "");
+  ReaderOptions o;
+  o.kind = DatasetKind::ImageFolder;
+  EXPECT_EQ(open_sequence(root / "rgb", o)->info().notes, "");
+}
+
 // Bad input: each names the file, the line where there is one, and the problem.
 // The error of opening the sequence at `root` and reading its frame `frame`.
 std::string error_of(const fs::path& root, size_t frame = 0) {
