@@ -106,6 +106,10 @@ void SequenceReader::finish_opening() {
   const cv::Mat first = load_image(entries_.front().image, !entries_.front().depth.empty());
   info_.width = first.cols;
   info_.height = first.rows;
+  // A calibration read before the images (EuRoC's sensor.yaml gives a resolution) fitted to them.
+  if (info_.calibration)
+    if (auto note = fit_calibration_size(*info_.calibration, info_.width, info_.height, info_.calibration_source))
+      add_note(*note);
   info_.has_depth = !entries_.front().depth.empty();
   update_counts();
   if (!ground_truth_.empty() && !info_.has_ground_truth) {

@@ -285,7 +285,9 @@ std::optional<std::string> fit_calibration_size(PinholeCamera& camera, int width
       blamed = "--set " + o.key + "=" + o.value;
   const std::string sizes = "Camera.width/height " + std::to_string(camera.width) + "x" + std::to_string(camera.height);
   const std::string images = "the sequence's images " + std::to_string(width) + "x" + std::to_string(height);
-  const auto near = [](int a, int b) { return std::abs(a - b) <= kCalibrationSizeTolerance * b; };
+  const auto near = [](int a, int b) {
+    return std::abs(a - b) <= std::max<double>(kCalibrationSizeTolerancePixels, kCalibrationSizeTolerance * b);
+  };
   if (!near(camera.width, width) || !near(camera.height, height))
     throw InputError(blamed, sizes + " do not match " + images);
   PinholeCamera fitted = camera;
@@ -294,7 +296,8 @@ std::optional<std::string> fit_calibration_size(PinholeCamera& camera, int width
   if (auto err = fitted.validate())
     throw InputError(blamed, sizes + " are close to " + images + ", but on them: " + *err);
   camera = fitted;
-  return blamed + ": " + sizes + " differ from " + images + " by at most 2 %: the images' size is used";
+  return blamed + ": " + sizes + " differ slightly from " + images +
+         " (by at most 2 % or 2 pixels a side): the images' size is used";
 }
 
 namespace {

@@ -60,12 +60,14 @@ void apply_setting_overrides(YAML::Node& root, const std::vector<SettingOverride
 void blame_overrides(const std::vector<SettingOverride>& overrides, const std::function<void()>& load);
 
 // Fits `camera`'s image size to the sequence's `width` x `height`. A size off by at most
-// kCalibrationSizeTolerance of each side is a rounding or a crop of a pixel or two (ORB-SLAM3's
-// KITTI03.yaml says 1241x376 for 1242x375 images, and ORB-SLAM3 takes the image bounds from the
-// images): the images' size is taken, and a note saying so is returned. The principal point must
-// still lie inside. Further off, the calibration is for another resolution: an InputError at the
-// --set that gave Camera.width or Camera.height when one did, else at `source` (the settings file).
+// kCalibrationSizeTolerance of each side or kCalibrationSizeTolerancePixels, whichever is more, is
+// a rounding or a crop (ORB-SLAM3's KITTI03.yaml says 1241x376 for 1242x375 images, and ORB-SLAM3
+// takes the image bounds from the images): the images' size is taken, and a note saying so is
+// returned. The principal point must still lie inside. Further off, the calibration is for another
+// resolution: an InputError at the --set that gave Camera.width or Camera.height when one did, else
+// at `source` (the settings file).
 inline constexpr double kCalibrationSizeTolerance = 0.02;
+inline constexpr int kCalibrationSizeTolerancePixels = 2;
 std::optional<std::string> fit_calibration_size(PinholeCamera& camera, int width, int height, const std::string& source,
                                                 const std::vector<SettingOverride>& overrides = {});
 

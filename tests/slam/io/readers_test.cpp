@@ -167,6 +167,35 @@ TEST(EurocReader, CameraGroundTruthComposesBodyPoseWithExtrinsics) {
   EXPECT_DOUBLE_EQ(r->info().calibration->k1, -0.28);
 }
 
+// sensor.yaml's resolution against the images: a pixel off is fitted with a note, far off an error.
+TEST(EurocReader, SensorResolutionIsCheckedAgainstTheImages) {
+  const fs::path root = scratch_dir();
+  test::make_euroc(root);
+  const fs::path sensor = root / "mav0" / "cam0" / "sensor.yaml";
+  std::ifstream in(sensor);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto with_resolution = [&](const std::string& r) {
+    std::string t = text;
+    t.replace(t.find("resolution: [64, 48]"), 20, "resolution: " + r);
+    write_text(sensor, t);
+  };
+  with_resolution("[64, 47]");
+  auto r = open_sequence(root);
+  ASSERT_TRUE(r->info().calibration);
+  EXPECT_EQ(r->info().calibration->height, 48);
+  EXPECT_NE(r->info().notes.find("Camera.width/height 64x47 differ slightly from the sequence's images 64x48"),
+            std::string::npos)
+      << r->info().notes;
+  with_resolution("[128, 96]");
+  try {
+    open_sequence(root);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              sensor.string() + ": Camera.width/height 128x96 do not match the sequence's images 64x48");
+  }
+}
+
 TEST(ImageFolderReader, NaturalOrderAndRate) {
   const fs::path root = scratch_dir();
   for (int i : {1, 2, 10}) test::write_image(root / ("img" + std::to_string(i) + ".png"), i);

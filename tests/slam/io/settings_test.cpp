@@ -188,8 +188,8 @@ TEST(Settings, CalibrationSizeOffByAPixelIsTakenFromTheImages) {
   const auto note = fit_calibration_size(c, 1242, 375, "KITTI03.yaml");
   ASSERT_TRUE(note.has_value());
   EXPECT_EQ(*note,
-            "KITTI03.yaml: Camera.width/height 1241x376 differ from the sequence's images 1242x375 by at most 2 %: "
-            "the images' size is used");
+            "KITTI03.yaml: Camera.width/height 1241x376 differ slightly from the sequence's images 1242x375 (by at "
+            "most 2 % or 2 pixels a side): the images' size is used");
   EXPECT_EQ(c.width, 1242);
   EXPECT_EQ(c.height, 375);
   // 3 % off: a calibration for another resolution.
