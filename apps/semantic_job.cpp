@@ -5,11 +5,12 @@
 #include <chrono>
 #include <cstdio>
 #include <map>
-#include <utility>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "apps/common.h"
 #include "apps/detection_cache.h"
+#include "apps/interrupt.h"
 #include "apps/progress.h"
 #include "semantics/detection/detector_factory.h"
 #include "semantics/detection/embedder.h"
@@ -279,6 +280,8 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
     semantics::KeyframeSelector selector(options.keyframes);
     Progress progress("semantics", reader->size(), job.progress);
     for (size_t i = 0; i < reader->size(); ++i) {
+      if (job.interruptible && (run.interrupted = InterruptScope::requested())) break;
+      run.frames_processed = static_cast<int>(i + 1);
       progress.update(i + 1);
       const auto& pose = reader->gt_pose(i);
       if (!pose) continue;
@@ -314,7 +317,10 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
     }
     const auto truth = semantics::read_objects_json(truth_file);
     auto annotations = semantics::load_annotations(ann_file);
-    semantics::keep_annotations_between(annotations, reader->timestamp(0), reader->timestamp(reader->size() - 1));
+    // The frames read: all, or those before an interruption.
+    const size_t last =
+        run.interrupted ? static_cast<size_t>(std::max(run.frames_processed, 1) - 1) : reader->size() - 1;
+    semantics::keep_annotations_between(annotations, reader->timestamp(0), reader->timestamp(last));
     const auto evaluate = [&](const semantics::AssociationResult& result) {
       std::vector<semantics::MeasurementRecord> records;
       for (const auto& m : run.measurements) {
@@ -369,6 +375,10 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
                                        {"measurement_median_per_keyframe", median(T.measurement)},
                                        {"mot_total", T.mot}, {"hdp_total", T.hdp}, {"pose_selection_total", T.pose_selection}}}};
     report["first_frame"] = reader->first_frame();  // of the stretch run (--first-frame)
+    if (run.interrupted) {
+      report["interrupted"] = signal_name(run.interrupted);
+      report["frames_processed"] = run.frames_processed;
+    }
     report["settings"] = job.settings.string();     // empty: the defaults
     report["settings_overrides"] = overrides_json(job.settings_overrides);
     report["settings_notes"] = setup->settings_notes;
@@ -378,6 +388,10 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
         "\n- association: " + options.association.mode +
         "\n- settings: " + (job.settings.empty() ? std::string("the defaults") : "`" + job.settings.string() + "`") +
         overrides_text(job.settings_overrides) + "\n" + settings_notes_text(setup->settings_notes) +
+        (run.interrupted ? "- interrupted (" + signal_name(run.interrupted) + ") after frame " +
+                               std::to_string(run.frames_processed) + " of " + std::to_string(run.frames) +
+                               ": the figures below are for those frames\n"
+                         : std::string()) +
         "- keyframes: " + std::to_string(run.keyframes.size()) + ", groups: " + std::to_string(run.result.num_groups) +
         ", landmarks: " + std::to_string(run.result.landmarks.size()) + "\n";
     if (!own_run)  // keyframe images queued for detection while the SLAM ran (the rest: after it)

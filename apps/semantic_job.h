@@ -62,6 +62,9 @@ struct SemanticJob {
   // From the SLAM: its sparse map's points (world frame, map units), drawn in map.glb (in the metric
   // frame of the objects and the trajectory). Null: the map has no points (--poses gt).
   const std::vector<Eigen::Vector3d>* map_points = nullptr;
+  // --poses gt: a Ctrl-C / SIGTERM (InterruptScope, set up by the caller) stops after the frame in
+  // hand; the objects are mapped on the keyframes so far and written (SemanticRun::interrupted).
+  bool interruptible = false;
   // Prepared beforehand (prepare_semantic_job), e.g. to detect keyframes while the SLAM runs.
   // Null: prepared by run_semantic_job.
   SemanticSetup* setup = nullptr;
@@ -95,6 +98,9 @@ struct SemanticRun {
   std::optional<semantics::AssociationResult> baseline;
   std::optional<semantics::ObjectEvaluation> baseline_evaluation;
   int frames = 0;
+  // SemanticJob::interruptible: the signal that stopped the run (0: none) and the frames read by then.
+  int interrupted = 0;
+  int frames_processed = 0;
   // Monocular SLAM: metres per map unit, and how many detections gave it (0: none; no poses then).
   std::optional<double> metric_scale;
   int scale_estimates = 0;

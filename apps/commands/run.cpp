@@ -13,6 +13,7 @@
 
 #include "apps/commands/commands.h"
 #include "apps/common.h"
+#include "apps/interrupt.h"
 #include "apps/semantic_job.h"
 #include "apps/slam_job.h"
 #include "slam/core/errors.h"
@@ -112,8 +113,12 @@ void run(RunArgs& a) {
   }
   if (a.mode == "mono")
     throw InputError(a.job.sequence.string(), "--poses gt measures objects from depth: use --mode rgbd on a sequence with depth");
+  // Before the start is logged: a signal after it (the tests send one) meets the handlers.
+  std::optional<InterruptScope> interrupt_scope(std::in_place);
   spdlog::info("run: {} (poses: ground truth)", a.job.sequence.string());
+  a.job.interruptible = true;
   const SemanticRun r = run_semantic_job(a.job);
+  interrupt_scope.reset();
   earlier.remove_those_not_written_again();
   std::printf("frames %d, keyframes %zu, groups %d, group objects %d, measurements %zu, landmarks %zu\n", r.frames,
               r.keyframes.size(), r.result.num_groups, r.result.num_group_objects, r.measurements.size(),
@@ -122,6 +127,10 @@ void run(RunArgs& a) {
   if (r.evaluation) std::printf("%s", format_object_evaluation(*r.evaluation).c_str());
   if (r.baseline) std::printf("against the HDP-only baseline:\n%s", format_baseline_comparison(r).c_str());
   if (!a.job.out.empty()) std::printf("outputs in %s\n", a.job.out.c_str());
+  if (r.interrupted)
+    throw Interrupted(r.interrupted, "interrupted (" + signal_name(r.interrupted) + ") after frame " +
+                                         std::to_string(r.frames_processed) + " of " + std::to_string(r.frames) +
+                                         "; the objects are those of its keyframes");
 }
 
 }  // namespace

@@ -725,6 +725,32 @@ TEST(CliPipeline, InterruptedRunWritesTheFramesSoFar) {
   EXPECT_TRUE(fs::exists(dir / "run" / "points.ply"));
 }
 
+// SIGTERM during --poses gt: the objects of the keyframes so far are mapped and written, the report
+// says so, and the exit code is 128 + SIGTERM. The signal goes as soon as the run has logged its start
+// (the handlers are in place before): 150 frames take over a second to read.
+TEST(CliPipeline, InterruptedGroundTruthRunWritesTheObjectsSoFar) {
+  const fs::path dir = scratch_dir();
+  ASSERT_EQ(wardmap_cli("-q synth --scenario ward --variant slow --frames 150 --out " + shq(dir / "seq")).code, 0);
+  const fs::path err = dir / "stderr.txt";
+  CliResult r;
+  r.code = run_command(
+      (binary_dir() / "apps" / "wardmap").string() + " run " + shq(dir / "seq") + " --poses gt --out " +
+          shq(dir / "run") + " 2>" + shq(err) + " & pid=$!; for i in $(seq 600); do grep -q 'run:' " + shq(err) +
+          " && break; sleep 0.02; done; kill -TERM $pid; wait $pid; code=$?; cat " + shq(err) + "; exit $code",
+      &r.output);
+  EXPECT_EQ(r.code, 128 + 15) << r.output;
+  EXPECT_NE(r.output.find("wardmap: interrupted (SIGTERM) after frame "), std::string::npos) << r.output;
+  std::ifstream in(dir / "run" / "report.json");
+  ASSERT_TRUE(in) << r.output;
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report.at("interrupted").get<std::string>(), "SIGTERM");
+  EXPECT_EQ(report.at("frames").get<int>(), 150);
+  EXPECT_LT(report.at("frames_processed").get<int>(), 150);
+  EXPECT_NE(read_all(dir / "run" / "report.md").find("- interrupted (SIGTERM) after frame "), std::string::npos);
+  for (const char* f : {"objects.json", "measurements.jsonl", "map.glb", "trajectory.txt"})
+    EXPECT_TRUE(fs::exists(dir / "run" / f)) << f;
+}
+
 // SIGTERM during synth: it stops after the frame in hand, removes its partial folder and leaves an
 // earlier sequence at --out as it was (before, the partial folder of PNGs stayed beside it).
 TEST(CliPipeline, InterruptedSynthLeavesNothing) {
