@@ -108,7 +108,8 @@ void SequenceReader::finish_opening() {
   info_.height = first.rows;
   // A calibration read before the images (EuRoC's sensor.yaml gives a resolution) fitted to them.
   if (info_.calibration)
-    if (auto note = fit_calibration_size(*info_.calibration, info_.width, info_.height, info_.calibration_source))
+    if (auto note = fit_calibration_size(*info_.calibration, info_.width, info_.height, info_.calibration_source, {},
+                                         "resolution (width/height)"))
       add_note(*note);
   info_.has_depth = !entries_.front().depth.empty();
   update_counts();
@@ -200,7 +201,7 @@ static bool has_video_extension(const fs::path& p) {
 std::string enclosing_dataset_hint(const fs::path& path) {
   // Up to three levels: KITTI's sequences/03/image_0, EuRoC's mav0/cam0/data, a TUM rgb/ folder.
   fs::path dir = fs::absolute(path).lexically_normal();
-  if (dir.has_filename() == false) dir = dir.parent_path();  // a trailing slash
+  if (!dir.has_filename()) dir = dir.parent_path();  // a trailing slash
   for (int level = 0; level < 3 && dir.has_parent_path() && dir.parent_path() != dir; ++level) {
     dir = dir.parent_path();
     try {

@@ -277,13 +277,14 @@ void blame_overrides(const std::vector<SettingOverride>& overrides, const std::f
 }
 
 std::optional<std::string> fit_calibration_size(PinholeCamera& camera, int width, int height, const std::string& source,
-                                                const std::vector<SettingOverride>& overrides) {
+                                                const std::vector<SettingOverride>& overrides,
+                                                const std::string& size_keys) {
   if (camera.width == width && camera.height == height) return std::nullopt;
   std::string blamed = source;
   for (const SettingOverride& o : overrides)
     if ((o.key == "Camera.width" && camera.width != width) || (o.key == "Camera.height" && camera.height != height))
       blamed = "--set " + o.key + "=" + o.value;
-  const std::string sizes = "Camera.width/height " + std::to_string(camera.width) + "x" + std::to_string(camera.height);
+  const std::string sizes = size_keys + " " + std::to_string(camera.width) + "x" + std::to_string(camera.height);
   const std::string images = "the sequence's images " + std::to_string(width) + "x" + std::to_string(height);
   const auto near = [](int a, int b) {
     return std::abs(a - b) <= std::max<double>(kCalibrationSizeTolerancePixels, kCalibrationSizeTolerance * b);

@@ -68,8 +68,10 @@ void blame_overrides(const std::vector<SettingOverride>& overrides, const std::f
 // at `source` (the settings file).
 inline constexpr double kCalibrationSizeTolerance = 0.02;
 inline constexpr int kCalibrationSizeTolerancePixels = 2;
+// `size_keys` names the size in the messages (EuRoC's sensor.yaml: "resolution (width/height)").
 std::optional<std::string> fit_calibration_size(PinholeCamera& camera, int width, int height, const std::string& source,
-                                                const std::vector<SettingOverride>& overrides = {});
+                                                const std::vector<SettingOverride>& overrides = {},
+                                                const std::string& size_keys = "Camera.width/height");
 
 // Loads and validates, with `overrides` set over the file's keys first; accepts OpenCV's `%YAML:1.0`
 // header. Throws InputError naming the file and the key (and the line for YAML syntax errors).

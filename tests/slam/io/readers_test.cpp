@@ -183,7 +183,7 @@ TEST(EurocReader, SensorResolutionIsCheckedAgainstTheImages) {
   auto r = open_sequence(root);
   ASSERT_TRUE(r->info().calibration);
   EXPECT_EQ(r->info().calibration->height, 48);
-  EXPECT_NE(r->info().notes.find("Camera.width/height 64x47 differ slightly from the sequence's images 64x48"),
+  EXPECT_NE(r->info().notes.find("resolution (width/height) 64x47 differ slightly from the sequence's images 64x48"),
             std::string::npos)
       << r->info().notes;
   with_resolution("[128, 96]");
@@ -192,7 +192,7 @@ TEST(EurocReader, SensorResolutionIsCheckedAgainstTheImages) {
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()),
-              sensor.string() + ": Camera.width/height 128x96 do not match the sequence's images 64x48");
+              sensor.string() + ": resolution (width/height) 128x96 do not match the sequence's images 64x48");
   }
 }
 
