@@ -695,16 +695,9 @@ TEST(CliPipeline, RealtimeRunIsPacedAtTheSequencesRate) {
 TEST(CliPipeline, InterruptedRunWritesTheFramesSoFar) {
   const fs::path dir = scratch_dir();
   ASSERT_EQ(wardmap_cli("-q synth --scenario ward --variant slow --frames 150 --out " + shq(dir / "seq")).code, 0);
-  // The signal goes 1 s after the run has logged its start (its handlers are in place by then), not
-  // at a fixed time: a slow start-up (sanitizers, a loaded machine) would meet the default action.
-  const fs::path err = dir / "stderr.txt";
-  CliResult r;
-  r.code = run_command((binary_dir() / "apps" / "wardmap").string() + " run " + shq(dir / "seq") +
-                           " --mode rgbd --realtime --out " + shq(dir / "run") + " 2>" + shq(err) +
-                           " & pid=$!; for i in $(seq 600); do grep -q 'run:' " + shq(err) +
-                           " && break; sleep 0.1; done; sleep 1; kill -INT $pid; wait $pid; code=$?; cat " + shq(err) +
-                           "; exit $code",
-                       &r.output);
+  const CliResult r =
+      wardmap_cli_signalled("run " + shq(dir / "seq") + " --mode rgbd --realtime --out " + shq(dir / "run"),
+                            dir / "stderr.txt", "run:", "INT", "1");
   EXPECT_EQ(r.code, 128 + 2) << r.output;
   EXPECT_NE(r.output.find("wardmap: interrupted (SIGINT) after frame "), std::string::npos) << r.output;
   std::ifstream in(dir / "run" / "report.json");
@@ -731,13 +724,8 @@ TEST(CliPipeline, InterruptedRunWritesTheFramesSoFar) {
 TEST(CliPipeline, InterruptedGroundTruthRunWritesTheObjectsSoFar) {
   const fs::path dir = scratch_dir();
   ASSERT_EQ(wardmap_cli("-q synth --scenario ward --variant slow --frames 150 --out " + shq(dir / "seq")).code, 0);
-  const fs::path err = dir / "stderr.txt";
-  CliResult r;
-  r.code = run_command(
-      (binary_dir() / "apps" / "wardmap").string() + " run " + shq(dir / "seq") + " --poses gt --out " +
-          shq(dir / "run") + " 2>" + shq(err) + " & pid=$!; for i in $(seq 600); do grep -q 'run:' " + shq(err) +
-          " && break; sleep 0.02; done; kill -TERM $pid; wait $pid; code=$?; cat " + shq(err) + "; exit $code",
-      &r.output);
+  const CliResult r = wardmap_cli_signalled("run " + shq(dir / "seq") + " --poses gt --out " + shq(dir / "run"),
+                                            dir / "stderr.txt", "run:", "TERM", "0");
   EXPECT_EQ(r.code, 128 + 15) << r.output;
   EXPECT_NE(r.output.find("wardmap: interrupted (SIGTERM) after frame "), std::string::npos) << r.output;
   std::ifstream in(dir / "run" / "report.json");
@@ -757,13 +745,9 @@ TEST(CliPipeline, InterruptedSynthLeavesNothing) {
   const fs::path dir = scratch_dir();
   ASSERT_EQ(wardmap_cli("-q synth --scenario ward --frames 3 --out " + shq(dir / "seq")).code, 0);
   const std::string rgb_txt = read_all(dir / "seq" / "rgb.txt");
-  const fs::path err = dir / "stderr.txt";
-  CliResult r;  // the whole ward sequence, 454 frames: the signal 1 s after its start arrives mid-way
-  r.code = run_command(
-      (binary_dir() / "apps" / "wardmap").string() + " synth --scenario ward --out " + shq(dir / "seq") + " 2>" +
-          shq(err) + " & pid=$!; for i in $(seq 600); do grep -q 'synth:' " + shq(err) +
-          " && break; sleep 0.1; done; sleep 1; kill -TERM $pid; wait $pid; code=$?; cat " + shq(err) + "; exit $code",
-      &r.output);
+  // The whole ward sequence, 454 frames: the signal 1 s after its start arrives mid-way.
+  const CliResult r = wardmap_cli_signalled("synth --scenario ward --out " + shq(dir / "seq"), dir / "stderr.txt",
+                                            "synth:", "TERM", "1");
   EXPECT_EQ(r.code, 128 + 15) << r.output;
   EXPECT_NE(r.output.find("wardmap: synth interrupted (SIGTERM) after "), std::string::npos) << r.output;
   EXPECT_EQ(read_all(dir / "seq" / "rgb.txt"), rgb_txt);
