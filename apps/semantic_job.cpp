@@ -126,9 +126,7 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
     slam::io::blame_overrides(job.settings_overrides,
                               [&] { settings = slam::io::load_settings(job.settings, job.settings_overrides); });
   if (settings) {
-    if (auto note = slam::io::fit_calibration_size(settings->camera.camera, info.width, info.height,
-                                                   job.settings.string(), job.settings_overrides))
-      settings->notes.push_back(*note);
+    slam::io::fit_calibration_size(*settings, info.width, info.height, job.settings_overrides);
     warn_settings_notes(*settings);
     setup->settings_notes = settings->notes;
   }

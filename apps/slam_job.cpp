@@ -144,9 +144,7 @@ double run_slam_job(const SlamJob& job) {
     settings = slam::io::load_settings(settings_file, job.settings_overrides);
     options = slam::load_front_options(settings);
   });
-  if (auto note = slam::io::fit_calibration_size(settings.camera.camera, info.width, info.height,
-                                                 settings_file.string(), job.settings_overrides))
-    settings.notes.push_back(*note);
+  slam::io::fit_calibration_size(settings, info.width, info.height, job.settings_overrides);
   warn_settings_notes(settings);
   if (settings.camera.depth_map_factor) reader->set_depth_factor(*settings.camera.depth_map_factor);
   const std::string mode = job.mode.empty() ? (info.has_depth ? "rgbd" : "mono") : job.mode;

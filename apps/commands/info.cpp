@@ -60,9 +60,7 @@ void run_info(const InfoArgs& a) {
   std::optional<slam::io::Settings> settings;
   if (!settings_file.empty()) {
     settings = check_settings(settings_file, overrides);
-    if (auto note = slam::io::fit_calibration_size(settings->camera.camera, in.width, in.height, settings_file.string(),
-                                                   overrides))
-      settings->notes.push_back(*note);
+    slam::io::fit_calibration_size(*settings, in.width, in.height, overrides);
   }
 
   std::string calib;

@@ -301,6 +301,11 @@ std::optional<std::string> fit_calibration_size(PinholeCamera& camera, int width
          " (by at most 2 % or 2 pixels a side): the images' size is used";
 }
 
+void fit_calibration_size(Settings& settings, int width, int height, const std::vector<SettingOverride>& overrides) {
+  if (auto note = fit_calibration_size(settings.camera.camera, width, height, settings.file.string(), overrides))
+    settings.notes.push_back(*note);
+}
+
 namespace {
 
 // Settings::notes for the top-level keys not read that look meant to change something, and an

@@ -29,8 +29,8 @@ struct Settings {
   YAML::Node root;  // the whole document, for the modules' own sections
   // Top-level keys that look meant to change something but are not read: a misspelling of a key
   // wardmap reads, an ORB-SLAM3 key of processing wardmap does not do (a resized image, a stereo
-  // rig's second camera). Each names its key and line; a run logs them as warnings. The commands
-  // add the note of fit_calibration_size when the images' size replaced a slightly different one.
+  // rig's second camera). Each names its key and line; a run logs them as warnings. Also the note of
+  // fit_calibration_size when the images' size replaced a slightly different one.
   std::vector<std::string> notes;
   // A wardmap section (e.g. "tracking"); an undefined node when absent.
   YAML::Node section(const std::string& name) const { return root[name]; }
@@ -72,6 +72,9 @@ inline constexpr int kCalibrationSizeTolerancePixels = 2;
 std::optional<std::string> fit_calibration_size(PinholeCamera& camera, int width, int height, const std::string& source,
                                                 const std::vector<SettingOverride>& overrides = {},
                                                 const std::string& size_keys = "Camera.width/height");
+// The same for a settings file's camera, at the file (or the --set that gave the size): the note
+// joins `settings.notes`, which a run warns about and records.
+void fit_calibration_size(Settings& settings, int width, int height, const std::vector<SettingOverride>& overrides);
 
 // Loads and validates, with `overrides` set over the file's keys first; accepts OpenCV's `%YAML:1.0`
 // header. Throws InputError naming the file and the key (and the line for YAML syntax errors).
