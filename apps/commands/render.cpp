@@ -33,8 +33,9 @@ void render_map(const RenderArgs& a) {
   semantics::render_map_png(scene, a.out, o);
   size_t points = 0;
   for (const auto& p : scene.points) points += p.points.size();
-  spdlog::info("render-map: {} objects, {} trajectory line(s), {} map points -> {} ({}x{})", scene.objects.size(),
-               scene.lines.size(), points, a.out, a.width, a.height);
+  spdlog::info("render-map: {}, {}, {} -> {} ({}x{})", semantics::counted(scene.objects.size(), "object"),
+               semantics::counted(scene.lines.size(), "trajectory line"), semantics::counted(points, "map point"),
+               a.out, a.width, a.height);
 }
 
 }  // namespace

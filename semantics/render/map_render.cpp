@@ -473,8 +473,9 @@ void render_map_png(const MapScene& scene, const fs::path& png, const MapRenderO
   const int text_px = std::max(12, o.height / 40);
   add_legend(ren, legend, o, text_px);
   if (!o.title.empty()) add_text(ren, o.title, 0.01, 0.99, text_px, true);
-  add_text(ren, std::to_string(scene.objects.size()) + " objects; grid " + format_step(step) +
-                    (o.view == MapView::Top ? "; top view" : "; oblique view"),
+  add_text(ren,
+           counted(scene.objects.size(), "object") + "; grid " + format_step(step) +
+               (o.view == MapView::Top ? "; top view" : "; oblique view"),
            0.01, 0.01, std::max(11, text_px * 3 / 4), false);
 
   ren->ResetCameraClippingRange();
@@ -501,5 +502,7 @@ void render_map_png(const MapScene& scene, const fs::path& png, const MapRenderO
   const auto* p = bytes->GetPointer(0);
   slam::io::write_file_atomic(png, std::string(reinterpret_cast<const char*>(p), static_cast<size_t>(bytes->GetNumberOfValues())));
 }
+
+std::string counted(size_t n, const std::string& noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); }
 
 }  // namespace wardmap::semantics

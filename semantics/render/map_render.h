@@ -59,4 +59,7 @@ std::optional<std::string> display_problem();
 // wardmap::InputError naming `png` when it cannot be written.
 void render_map_png(const MapScene& scene, const std::filesystem::path& png, const MapRenderOptions& options);
 
+// "1 object", "3 objects": a count and its noun, plural with an s when the count is not 1.
+std::string counted(size_t n, const std::string& noun);
+
 }  // namespace wardmap::semantics

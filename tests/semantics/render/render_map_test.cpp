@@ -109,6 +109,12 @@ TEST(RenderMapScene, RejectsMissingAndNonGlbFiles) {
   }
 }
 
+TEST(RenderMapText, CountsTakeTheirNounsNumber) {
+  EXPECT_EQ(semantics::counted(0, "object"), "0 objects");
+  EXPECT_EQ(semantics::counted(1, "object"), "1 object");
+  EXPECT_EQ(semantics::counted(9, "map point"), "9 map points");
+}
+
 TEST(RenderMapCli, TopViewShowsTheClassColours) {
   if (!have_xvfb()) GTEST_SKIP() << "xvfb-run not found (Debian package xvfb): cannot draw without an X display";
   const fs::path dir = scratch_dir();
