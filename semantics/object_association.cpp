@@ -803,7 +803,7 @@ AssociationResult associate_objects(const std::vector<ObjectMeasurement>& ms, co
                                                              : std::min(l.pose.size(0), l.pose.size(1));
       if (std::any_of(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(reported),
                       [&](const ObjectLandmark& o) {
-                        return o.label == label && horizontal_distance(o.pose, l.pose) < width &&
+                        return o.label == l.label && horizontal_distance(o.pose, l.pose) < width &&
                                never_measured_together(o.measurements, l.measurements);
                       }))
         continue;
