@@ -66,7 +66,7 @@ std::vector<TrueObject> read_objects_json(const fs::path& file) {
   json doc;
   try {
     doc = json::parse(in);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, or out_of_range for a number too large
     throw InputError(file.string(), std::string("JSON syntax error: ") + e.what());
   }
   if (!doc.contains("objects") || !doc["objects"].is_array()) throw InputError(file.string(), "expected {\"objects\": [...]}");

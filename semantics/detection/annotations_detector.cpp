@@ -94,7 +94,7 @@ std::vector<AnnotatedFrame> read_annotations(const fs::path& file) {
     json j;
     try {
       j = json::parse(text);
-    } catch (const json::parse_error& ex) {
+    } catch (const json::exception& ex) {  // parse_error, or out_of_range for a number too large
       throw InputError(file.string(), std::string("malformed JSON: ") + ex.what(), line);
     }
     if (!j.is_object()) throw InputError(file.string(), "expected a JSON object per line", line);

@@ -95,9 +95,12 @@ void SequenceReader::set_calibration(PinholeCamera camera, const std::string& so
 void SequenceReader::finish_opening() {
   if (entries_.empty()) throw InputError(info_.root.string(), "the sequence has no frames");
   const auto check_exists = [](const fs::path& file, const fs::path& listed_in, long line) {
-    if (file.empty() || fs::exists(file)) return;
-    if (!listed_in.empty()) throw InputError(listed_in.string(), "listed file '" + file.string() + "' not found", line);
-    throw InputError(file.string(), "file not found");
+    std::error_code ec;  // set when the name cannot even be looked up (too long, a folder it may not search)
+    if (file.empty() || fs::exists(file, ec)) return;
+    const std::string problem = ec ? "cannot be looked up: " + ec.message() : "not found";
+    if (!listed_in.empty())
+      throw InputError(listed_in.string(), "listed file '" + file.string() + "' " + problem, line);
+    throw InputError(file.string(), "file " + problem);
   };
   for (const Entry& e : entries_) {
     check_exists(e.image, e.listed_in, e.line);

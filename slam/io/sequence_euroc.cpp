@@ -2,10 +2,12 @@
 // mav0/state_groundtruth_estimate0/data.csv (body pose T_WB; the camera pose is T_WB * T_BS).
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <limits>
 
 #include "slam/core/errors.h"
 #include "slam/io/sequence.h"
+#include "slam/io/settings.h"
 #include "slam/io/text_file.h"
 #include "slam/io/trajectory_io.h"
 
@@ -60,6 +62,9 @@ class EurocReader : public SequenceReader {
       } catch (const YAML::Exception& ex) {
         throw InputError(sensor.string(), std::string("YAML error: ") + ex.what());
       }
+      if (!y.IsMap() && !y.IsNull())
+        throw InputError(sensor.string(), "expected keys (T_BS, intrinsics, resolution, ...), got a YAML " +
+                                              std::string(y.IsSequence() ? "list" : "scalar"));
       if (y["T_BS"]) {
         const auto m = yaml_numbers(y["T_BS"], sensor, "T_BS", 16);
         Eigen::Matrix4d T;
@@ -69,6 +74,11 @@ class EurocReader : public SequenceReader {
       if (y["intrinsics"] && y["resolution"]) {
         const auto k = yaml_numbers(y["intrinsics"], sensor, "intrinsics", 4);
         const auto r = yaml_numbers(y["resolution"], sensor, "resolution", 2);
+        for (double side : r) {
+          check_range(side, 1, 65535, "resolution", sensor);
+          if (side != std::floor(side))
+            throw InputError(sensor.string(), "key 'resolution': expected whole numbers of pixels");
+        }
         PinholeCamera c;
         c.fx = k[0], c.fy = k[1], c.cx = k[2], c.cy = k[3];
         c.width = static_cast<int>(r[0]), c.height = static_cast<int>(r[1]);
@@ -80,7 +90,10 @@ class EurocReader : public SequenceReader {
         info_.calibration = c;
         info_.calibration_source = sensor.string();
       }
-      if (y["rate_hz"]) info_.fps = y["rate_hz"].as<double>(20.0);
+      if (y["rate_hz"]) {  // else, or when it is not a positive number, the rate of the timestamps
+        const double rate = y["rate_hz"].as<double>(0.0);
+        if (std::isfinite(rate) && rate > 0) info_.fps = rate;
+      }
     }
 
     const fs::path gt = mav / "state_groundtruth_estimate0" / "data.csv";

@@ -178,6 +178,10 @@ TEST(AnnotationsDetector, MalformedLinesNameFileAndLine) {
   EXPECT_NE(e.find("repeats"), std::string::npos) << e;
   e = error_of(R"({"timestamp": 0, "objects": [{"id": 1, "class": "door", "box": [0, 0, 5, 5], "visible": 2}]})", dir);
   EXPECT_NE(e.find("'visible'"), std::string::npos) << e;
+  // A number too large for a double (nlohmann's out_of_range, not a parse_error; found by fuzz_annotations).
+  e = error_of(first + "\n" + R"({"timestamp": 4e347, "objects": []})", dir);
+  EXPECT_NE(e.find(file + ":2: malformed JSON"), std::string::npos) << e;
+  EXPECT_NE(e.find("number overflow"), std::string::npos) << e;
 }
 
 TEST(AnnotationsDetector, FactoryReadsTheSequenceFolder) {

@@ -381,6 +381,34 @@ TEST(BadInput, MissingImageOrDepthNamesItsIndexLine) {
   EXPECT_NE(e.find("depth.txt:7: listed file"), std::string::npos) << e;  // not rgb.txt's line
 }
 
+// Found by fuzz_sequences (tests/fuzz): a name the system cannot look up was a std::filesystem error
+// naming no index line.
+TEST(BadInput, ListedNameTooLongNamesItsIndexLine) {
+  const fs::path root = scratch_dir();
+  test::make_tum(root);
+  std::ofstream(root / "rgb.txt", std::ios::app) << "1.2 rgb/" << std::string(300, 'x') << ".png\n";
+  std::ofstream(root / "depth.txt", std::ios::app) << "1.2 depth/3.png\n";  // a colour frame without depth is dropped
+  const std::string e = error_of(root);
+  EXPECT_NE(e.find("rgb.txt:8: listed file"), std::string::npos) << e;
+  EXPECT_NE(e.find("cannot be looked up: File name too long"), std::string::npos) << e;
+}
+
+// Found by fuzz_sequences: a sensor.yaml that is not a map of keys escaped as a yaml-cpp exception.
+TEST(BadInput, EurocSensorYamlThatIsNotKeys) {
+  const fs::path root = scratch_dir();
+  test::make_euroc(root);
+  const fs::path sensor = root / "mav0" / "cam0" / "sensor.yaml";
+  write_text(sensor, "- 1\n- 2\n");
+  EXPECT_EQ(error_of(root), sensor.string() + ": expected keys (T_BS, intrinsics, resolution, ...), got a YAML list");
+  write_text(sensor, "just text\n");
+  EXPECT_EQ(error_of(root), sensor.string() + ": expected keys (T_BS, intrinsics, resolution, ...), got a YAML scalar");
+  write_text(sensor, "resolution: [64.5, 48]\nintrinsics: [45.0, 46.0, 32.0, 24.0]\n");
+  EXPECT_EQ(error_of(root), sensor.string() + ": key 'resolution': expected whole numbers of pixels");
+  write_text(sensor, "resolution: [1e300, 48]\nintrinsics: [45.0, 46.0, 32.0, 24.0]\n");
+  EXPECT_NE(error_of(root).find("key 'resolution': must be in [1, 65535], got 1e+300"), std::string::npos)
+      << error_of(root);
+}
+
 TEST(BadInput, KittiImageNamesAndTimes) {
   const fs::path root = scratch_dir();
   test::make_kitti(root);
