@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Fuzzes wardmap's input readers with libFuzzer under address + undefined sanitizers (tests/fuzz,
-# README.md#fuzzing). Needs clang (Debian: clang, libclang-rt-14-dev); builds in build-fuzz/.
+# README.md#fuzzing). Installs what it needs (scripts/setup.sh --deps-only --with-clang: the
+# project's packages, clang, libclang-rt-14-dev); builds in build-fuzz/.
 #   scripts/fuzz.sh [SECONDS] [TARGET...]   each target (default: all) for SECONDS (default 60)
 # Targets: trajectory settings sequences vocabulary onnx_rewrites annotations object_files model_description glb.
 # Each starts from its committed corpus (tests/fuzz/corpus/<target>) and keeps what it finds in
@@ -9,12 +10,12 @@
 # corpus, where ctest replays it (fuzz_<target>_corpus).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-case "${1:-}" in -h|--help) sed -n '2,9p' "$0"; exit 0 ;; esac
+case "${1:-}" in -h|--help) sed -n '2,10p' "$0"; exit 0 ;; esac
 SECONDS_EACH=60
 if [[ "${1:-}" =~ ^[0-9]+$ ]]; then SECONDS_EACH=$1; shift; fi
 TARGETS=("$@")
 [ ${#TARGETS[@]} -gt 0 ] || TARGETS=(trajectory settings sequences vocabulary onnx_rewrites annotations object_files model_description glb)
-command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ not found (apt-get install clang libclang-rt-14-dev)" >&2; exit 2; }
+scripts/setup.sh --deps-only --with-clang
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DWARDMAP_FUZZ=ON \
   -DWARDMAP_SANITIZE=address,undefined -DWARDMAP_BUILD_BENCH=OFF >/dev/null
 cmake --build build-fuzz -j"$(nproc 2>/dev/null || echo 2)" --target "${TARGETS[@]/#/fuzz_}"
