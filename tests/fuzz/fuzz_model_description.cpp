@@ -1,6 +1,6 @@
 // Fuzz target: a model description (models/*.yaml: weights file, input, preprocessing, decoder,
-// classes, landmark sets), with the shipped class list and landmark sets beside it so that the fuzzer reaches the keys
-// after `classes`.
+// classes, landmark sets), with the shipped class list and landmark sets beside it so that the
+// fuzzer reaches the keys after `classes`.
 #include <filesystem>
 
 #include "semantics/detection/model_description.h"

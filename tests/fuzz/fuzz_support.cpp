@@ -11,14 +11,18 @@ namespace wardmap::fuzz {
 
 namespace fs = std::filesystem;
 
+namespace {
+fs::path folder_of_this_process() { return fs::temp_directory_path() / ("wardmap-fuzz-" + std::to_string(::getpid())); }
+}  // namespace
+
 fs::path scratch_folder() {
   static const fs::path dir = [] {
-    const fs::path d = fs::temp_directory_path() / ("wardmap-fuzz-" + std::to_string(::getpid()));
+    const fs::path d = folder_of_this_process();
     fs::remove_all(d);
     fs::create_directories(d);
     std::atexit([] {  // libFuzzer's -max_total_time and the replay end through exit(); a crash keeps it
       std::error_code ec;
-      fs::remove_all(fs::temp_directory_path() / ("wardmap-fuzz-" + std::to_string(::getpid())), ec);
+      fs::remove_all(folder_of_this_process(), ec);
     });
     return d;
   }();
