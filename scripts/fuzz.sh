@@ -4,13 +4,14 @@
 # project's packages, clang, libclang-rt-14-dev); builds in build-fuzz/.
 #   scripts/fuzz.sh [SECONDS] [TARGET...]   each target (default: all) for SECONDS (default 60)
 # Targets: trajectory settings sequences vocabulary onnx_rewrites annotations object_files model_description glb.
-# Each starts from its committed corpus (tests/fuzz/corpus/<target>) and keeps what it finds in
+# Each starts from its committed corpus (tests/fuzz/corpus/<target>; onnx_rewrites from the models
+# of $WARDMAP_MODELS or ../shared/models) and keeps what it finds in
 # build-fuzz/corpus/<target>; a crash or an exception that is not an InputError is written to
 # build-fuzz/findings/<target>/ and named at the end. A fixed finding's input goes into the committed
 # corpus, where ctest replays it (fuzz_<target>_corpus).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-case "${1:-}" in -h|--help) sed -n '2,10p' "$0"; exit 0 ;; esac
+case "${1:-}" in -h|--help) sed -n '2,11p' "$0"; exit 0 ;; esac
 SECONDS_EACH=60
 if [[ "${1:-}" =~ ^[0-9]+$ ]]; then SECONDS_EACH=$1; shift; fi
 TARGETS=("$@")
@@ -26,8 +27,16 @@ for t in "${TARGETS[@]}"; do
   corpus=build-fuzz/corpus/$t findings=build-fuzz/findings/$t
   mkdir -p "$corpus" "$findings"
   echo "== fuzz_$t: ${SECONDS_EACH} s (log build-fuzz/fuzz_$t.log)"
+  seeds=()
+  [ -d tests/fuzz/corpus/"$t" ] && seeds+=(tests/fuzz/corpus/"$t")
+  if [ "$t" = onnx_rewrites ]; then  # the shared models, linked in (never committed)
+    models=${WARDMAP_MODELS:-../shared/models}
+    mkdir -p build-fuzz/seeds/onnx_rewrites
+    for m in "$models"/*/*.onnx; do [ -f "$m" ] && ln -sf "$(realpath "$m")" build-fuzz/seeds/onnx_rewrites/; done
+    seeds+=(build-fuzz/seeds/onnx_rewrites)
+  fi
   if build-fuzz/tests/fuzz/fuzz_$t -max_total_time="$SECONDS_EACH" -timeout=10 -rss_limit_mb=4096 \
-       -artifact_prefix="$findings/" "$corpus" tests/fuzz/corpus/"$t" >build-fuzz/fuzz_$t.log 2>&1; then
+       -artifact_prefix="$findings/" "$corpus" "${seeds[@]}" >build-fuzz/fuzz_$t.log 2>&1; then
     grep -E "^Done [0-9]+ runs" build-fuzz/fuzz_$t.log | tail -1 || true
   else
     failed+=("$t"); grep -E "^fuzz: |ERROR: |SUMMARY: |Test unit written" build-fuzz/fuzz_$t.log | head -5
