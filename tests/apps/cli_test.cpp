@@ -689,6 +689,25 @@ TEST(CliPipeline, RealtimeRunIsPacedAtTheSequencesRate) {
   EXPECT_FALSE(fs::exists(dir / "run2" / "report.json"));
 }
 
+// The checks every interrupted run shares: exit code 128 + signal, the message, and a report.json
+// that names the signal and counts fewer frames processed than the sequence's. Returns the report
+// (null when it is missing, which has failed the test).
+nlohmann::json interrupted_run_report(const CliResult& r, const fs::path& run, const std::string& signal, int number,
+                                      int frames) {
+  EXPECT_EQ(r.code, 128 + number) << r.output;
+  EXPECT_NE(r.output.find("wardmap: interrupted (" + signal + ") after frame "), std::string::npos) << r.output;
+  std::ifstream in(run / "report.json");
+  if (!in) {
+    ADD_FAILURE() << "no report.json: " << r.output;
+    return nullptr;
+  }
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report.at("interrupted").get<std::string>(), signal);
+  EXPECT_EQ(report.at("frames").get<int>(), frames);
+  EXPECT_LT(report.at("frames_processed").get<int>(), frames);
+  return report;
+}
+
 // Ctrl-C during tracking: the run stops after the frame in hand, writes its folder for the frames so
 // far (the report says so and evaluates them) and exits with 128 + SIGINT. --realtime paces the 150
 // frames over 5 s, so the signal 1 s after the start always arrives while frames are still tracked.
@@ -698,15 +717,9 @@ TEST(CliPipeline, InterruptedRunWritesTheFramesSoFar) {
   const CliResult r =
       wardmap_cli_signalled("run " + shq(dir / "seq") + " --mode rgbd --realtime --out " + shq(dir / "run"),
                             dir / "stderr.txt", "run:", "INT", "1");
-  EXPECT_EQ(r.code, 128 + 2) << r.output;
-  EXPECT_NE(r.output.find("wardmap: interrupted (SIGINT) after frame "), std::string::npos) << r.output;
-  std::ifstream in(dir / "run" / "report.json");
-  ASSERT_TRUE(in) << r.output;
-  const nlohmann::json report = nlohmann::json::parse(in);
-  EXPECT_EQ(report.at("interrupted").get<std::string>(), "SIGINT");
-  EXPECT_EQ(report.at("frames").get<int>(), 150);
+  const nlohmann::json report = interrupted_run_report(r, dir / "run", "SIGINT", 2, 150);
+  if (report.is_null()) return;
   const int processed = report.at("frames_processed").get<int>();
-  EXPECT_LT(processed, 150);
   std::ifstream frames(dir / "run" / "frames.csv");
   const auto lines = std::count(std::istreambuf_iterator<char>(frames), std::istreambuf_iterator<char>(), '\n');
   EXPECT_EQ(lines, processed + 1) << "a header and one line per frame tracked";
@@ -726,14 +739,7 @@ TEST(CliPipeline, InterruptedGroundTruthRunWritesTheObjectsSoFar) {
   ASSERT_EQ(wardmap_cli("-q synth --scenario ward --variant slow --frames 150 --out " + shq(dir / "seq")).code, 0);
   const CliResult r = wardmap_cli_signalled("run " + shq(dir / "seq") + " --poses gt --out " + shq(dir / "run"),
                                             dir / "stderr.txt", "run:", "TERM", "0");
-  EXPECT_EQ(r.code, 128 + 15) << r.output;
-  EXPECT_NE(r.output.find("wardmap: interrupted (SIGTERM) after frame "), std::string::npos) << r.output;
-  std::ifstream in(dir / "run" / "report.json");
-  ASSERT_TRUE(in) << r.output;
-  const nlohmann::json report = nlohmann::json::parse(in);
-  EXPECT_EQ(report.at("interrupted").get<std::string>(), "SIGTERM");
-  EXPECT_EQ(report.at("frames").get<int>(), 150);
-  EXPECT_LT(report.at("frames_processed").get<int>(), 150);
+  if (interrupted_run_report(r, dir / "run", "SIGTERM", 15, 150).is_null()) return;
   EXPECT_NE(read_all(dir / "run" / "report.md").find("- interrupted (SIGTERM) after frame "), std::string::npos);
   for (const char* f : {"objects.json", "measurements.jsonl", "map.glb", "trajectory.txt"})
     EXPECT_TRUE(fs::exists(dir / "run" / f)) << f;
