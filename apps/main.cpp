@@ -10,7 +10,9 @@
 #include "apps/interrupt.h"
 #include "slam/core/errors.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   CLI::App app{
       "wardmap: semantic object SLAM for hospital service robots.\n"
       "Give it a camera sequence (TUM RGB-D, KITTI odometry, EuRoC, 7-Scenes, an image folder or a video);\n"
@@ -49,4 +51,18 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // run() reports every error of a command itself; this is for what escapes its set-up (out of memory).
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "wardmap: error: %s\n", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "wardmap: error: unknown exception\n");
+  }
+  return 1;
 }

@@ -104,6 +104,7 @@ fs::path find_vocabulary(const fs::path& given) {
     if (!fs::exists(given)) throw InputError(given.string(), "vocabulary file not found");
     return given;
   }
+  // NOLINTNEXTLINE(concurrency-mt-unsafe): wardmap never calls setenv
   if (const char* env = std::getenv("WARDMAP_VOCABULARY"); env && *env) {
     if (!fs::exists(env)) throw InputError(env, "vocabulary file (WARDMAP_VOCABULARY) not found");
     return env;

@@ -9,6 +9,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <opencv2/core.hpp>
 #include <string>
@@ -122,7 +123,7 @@ void BM_SemanticStagesKitchenYolox(benchmark::State& state) {
   c["measurements_per_kf"] = static_cast<double>(measurements) / static_cast<double>(runs * keyframes.size());
   c["landmarks"] = static_cast<double>(landmarks) / static_cast<double>(runs);
   state.SetLabel("YOLOX-nano + OSNet x0.25, " + std::to_string(threads) + " threads, total " +
-                 std::to_string(static_cast<int>(total + 0.5)) + " ms/keyframe vs goal " +
+                 std::to_string(std::lround(total)) + " ms/keyframe vs goal " +
                  std::to_string(static_cast<int>(kGoalMs)) + " ms");
 }
 BENCHMARK(BM_SemanticStagesKitchenYolox)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->Iterations(1);

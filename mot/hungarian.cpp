@@ -23,11 +23,13 @@ std::vector<int> assign_rows_le_cols(const Eigen::MatrixXd& c) {
       dist[j] = c(r, j) - v[j];
       prev_row[j] = r;
     }
-    int sink = -1;
-    while (sink < 0) {
+    int sink;
+    for (;;) {
       int best = -1;
       for (int j = 0; j < m; ++j)
         if (!done[j] && (best < 0 || dist[j] < dist[best])) best = j;
+      // Every column done without a free one: more rows than columns, which the callers rule out.
+      if (best < 0) throw std::logic_error("assign_rows_le_cols: more rows than columns");
       done[best] = 1;
       order.push_back(best);
       const int i = col_owner[best];

@@ -49,7 +49,7 @@ class CameraPath {
   std::vector<double> times_;
   MonotoneSpline x_, y_, z_, yaw_, pitch_, roll_;
   Platform platform_;
-  double phase_[6];
+  double phase_[6] = {};
   std::vector<ShakeWindow> shakes_;
 };
 

@@ -48,7 +48,7 @@ void Rasterizer::prepare(const slam::SE3& T_wc, int first, int count, bool cull)
   items_.clear();
   const slam::SE3 T_cw = T_wc.inverse();
   const Eigen::Matrix3d R = T_cw.rotation_matrix();
-  const Eigen::Vector3d t = T_cw.translation();
+  const Eigen::Vector3d& t = T_cw.translation();
   const double near = options_.near_plane;
   const double fx = camera_.fx, fy = camera_.fy, cx = camera_.cx, cy = camera_.cy;
 

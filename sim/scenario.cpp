@@ -21,15 +21,11 @@ const std::string& to_string(ObjectClass c) { return object_class_names()[static
 int variant_count(ObjectClass c) {
   switch (c) {
     case ObjectClass::kDoor:
-      return 3;
     case ObjectClass::kChair:
-      return 3;
-    case ObjectClass::kBed:
-      return 2;
     case ObjectClass::kCabinet:
       return 3;
+    case ObjectClass::kBed:
     case ObjectClass::kWheelchair:
-      return 2;
     case ObjectClass::kIvPole:
       return 2;
   }

@@ -28,6 +28,7 @@ bool has_yaml(const fs::path& dir) {
 
 fs::path builtin_scenario_dir() {
   std::vector<fs::path> candidates;
+  // NOLINTNEXTLINE(concurrency-mt-unsafe): wardmap never calls setenv
   if (const char* env = std::getenv("WARDMAP_SCENARIOS")) candidates.emplace_back(env);
   const fs::path exe = executable_dir();
   if (!exe.empty()) {

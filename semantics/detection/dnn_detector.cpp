@@ -38,7 +38,7 @@ DnnDetector::DnnDetector(ModelDescription model, const fs::path& onnx_file, cons
   // One forward of a blank image: weights that do not fit the description (another model's) are
   // refused here, naming both files, not at the first frame.
   try {
-    detect(cv::Mat(model_.input.height, model_.input.width, CV_8UC3, cv::Scalar::all(0)), 0.0);
+    DnnDetector::detect(cv::Mat(model_.input.height, model_.input.width, CV_8UC3, cv::Scalar::all(0)), 0.0);
   } catch (const cv::Exception& ex) {
     throw InputError(onnx_file.string(),
                      "the network does not run on the input of " + model_.description_file.string() + ": " + ex.msg);

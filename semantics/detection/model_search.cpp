@@ -16,6 +16,7 @@ constexpr const char* kOsnetFile = "osnet-x0_25/osnet_x0_25_msmt17.onnx";
 std::vector<fs::path> model_search_path(const fs::path& models_dir) {
   std::vector<fs::path> dirs;
   if (!models_dir.empty()) dirs.push_back(models_dir);
+  // NOLINTNEXTLINE(concurrency-mt-unsafe): wardmap never calls setenv
   if (const char* env = std::getenv("WARDMAP_MODELS"); env && *env) dirs.emplace_back(env);
   dirs.emplace_back(WARDMAP_DEFAULT_MODELS_DIR);
   return dirs;

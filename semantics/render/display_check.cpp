@@ -13,6 +13,7 @@ std::optional<std::string> display_problem() {
   static const char* const kAdvice =
       "VTK draws through X (Debian's VTK has no off-screen back-end); run under a virtual display: "
       "xvfb-run -a -s \"-screen 0 1280x1024x24\" wardmap render-map ...";
+  // NOLINTNEXTLINE(concurrency-mt-unsafe): wardmap never calls setenv
   const char* name = std::getenv("DISPLAY");
   if (name == nullptr || *name == '\0') return std::string("no X display (DISPLAY is not set). ") + kAdvice;
   Display* d = XOpenDisplay(name);

@@ -18,7 +18,7 @@ Sim3 umeyama(const Eigen::Matrix3Xd& src, const Eigen::Matrix3Xd& dst, bool with
   if (var_s < 1e-18) throw std::invalid_argument("umeyama: source points coincide");
   const Eigen::Matrix3d sigma = d0 * s0.transpose() / static_cast<double>(n);
   Eigen::JacobiSVD<Eigen::Matrix3d> svd(sigma, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::Vector3d sv = svd.singularValues();
+  const Eigen::Vector3d& sv = svd.singularValues();
   if (sv(1) < 1e-12 * std::max(1.0, sv(0)))
     throw std::invalid_argument("umeyama: points are collinear, rotation is undetermined");
   Eigen::Vector3d S = Eigen::Vector3d::Ones();

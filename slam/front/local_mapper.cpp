@@ -141,11 +141,11 @@ void LocalMapper::cull_recent_points(const std::shared_ptr<KeyFrame>& kf) {
   for (auto it = recent_points_.begin(); it != recent_points_.end();) {
     const auto& mp = *it;
     const KeyFrameId age = kf->id() - mp->first_keyframe();
-    if (mp->bad()) {
+    if (mp->bad()) {  // NOLINT(bugprone-branch-clone): the same erase as a point past probation
       it = recent_points_.erase(it);
     } else if (mp->found_ratio() < m.recent_found_ratio ||
-               (age >= 2 && mp->num_observations() < (options_.monocular ? m.recent_min_observations_mono
-                                                                   : m.recent_min_observations))) {
+               (age >= 2 && mp->num_observations() <
+                                (options_.monocular ? m.recent_min_observations_mono : m.recent_min_observations))) {
       submap_->erase_map_point(mp);
       ++stats_.culled_points;
       it = recent_points_.erase(it);

@@ -190,7 +190,7 @@ std::vector<std::pair<int, int>> OrbMatcher::search_for_triangulation(const KeyF
   const Eigen::Matrix3d Kinv = K.inverse();
   const Eigen::Matrix3d F21 = Kinv.transpose() * hat(T21.translation()) * T21.rotation_matrix() * Kinv;
   // Epipole of camera 1 in image 2: points near it give no parallax.
-  const Eigen::Vector3d c1_in_2 = T21.translation();
+  const Eigen::Vector3d& c1_in_2 = T21.translation();
   const bool epipole_valid = c1_in_2.z() > 1e-9;
   const Eigen::Vector2d epipole = epipole_valid ? project_pinhole(camera_, c1_in_2) : Eigen::Vector2d(-1e9, -1e9);
 

@@ -132,7 +132,7 @@ std::vector<Motion> motions_from_fundamental(const Eigen::Matrix3d& F21, const P
   const Eigen::Matrix3d K = intrinsics(cam);
   const Eigen::Matrix3d E = K.transpose() * F21 * K;
   Eigen::JacobiSVD<Eigen::Matrix3d> svd(E, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::Matrix3d U = svd.matrixU(), V = svd.matrixV();
+  const Eigen::Matrix3d &U = svd.matrixU(), &V = svd.matrixV();
   Eigen::Matrix3d W;
   W << 0, -1, 0, 1, 0, 0, 0, 0, 1;
   Eigen::Matrix3d R1 = U * W * V.transpose(), R2 = U * W.transpose() * V.transpose();

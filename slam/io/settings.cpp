@@ -413,6 +413,7 @@ namespace {
 std::string full(const std::string& s, const std::string& k) { return s.empty() ? k : s + "." + k; }
 }  // namespace
 
+// NOLINTBEGIN(bugprone-macro-parentheses): T is a type
 #define WARDMAP_READ_OPTION(T, expected)                                                                         \
   void read_option(const YAML::Node& section, const std::string& section_name, const std::string& key, T& value, \
                    const fs::path& file) {                                                                       \
@@ -432,6 +433,7 @@ WARDMAP_READ_OPTION(bool, "true or false")
 WARDMAP_READ_OPTION(std::string, "a string")
 WARDMAP_READ_OPTION(std::uint64_t, "a non-negative integer")
 #undef WARDMAP_READ_OPTION
+// NOLINTEND(bugprone-macro-parentheses)
 
 void check_range(double value, double lo, double hi, const std::string& full_key, const fs::path& file) {
   if (!(value >= lo && value <= hi)) {
@@ -458,8 +460,8 @@ std::string suggest_settings_name(const std::string& kind, const fs::path& root,
   return {};
 }
 
-SectionKeys::SectionKeys(YAML::Node section, std::string name, fs::path file)
-    : section_(std::move(section)), name_(std::move(name)), file_(std::move(file)) {}
+SectionKeys::SectionKeys(const YAML::Node& section, std::string name, fs::path file)
+    : section_(section), name_(std::move(name)), file_(std::move(file)) {}
 
 void SectionKeys::reject_unknown() const {
   if (!section_ || section_.IsNull()) return;  // absent, or written empty ("tracking:")

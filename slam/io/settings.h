@@ -23,6 +23,7 @@ struct CameraSettings {
   std::optional<double> depth_map_factor;  // RGBD.DepthMapFactor (or DepthMapFactor)
 };
 
+// NOLINTNEXTLINE(bugprone-exception-escape): YAML::Node's assignment may throw
 struct Settings {
   std::filesystem::path file;
   CameraSettings camera;
@@ -101,7 +102,7 @@ void read_option(const YAML::Node& section, const std::string& section_name, con
 // section) is an error rather than silently ignored.
 class SectionKeys {
  public:
-  SectionKeys(YAML::Node section, std::string name, std::filesystem::path file);
+  SectionKeys(const YAML::Node& section, std::string name, std::filesystem::path file);
   // read_option on this section; the key becomes known.
   template <class T>
   void read(const std::string& key, T& value) {

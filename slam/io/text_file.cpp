@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <system_error>
 
 #include "slam/core/errors.h"
 
@@ -21,7 +22,7 @@ void for_each_data_line(const fs::path& file, bool csv,
   if (!fs::exists(file)) throw InputError(file.string(), "file not found");
   if (fs::is_directory(file)) throw InputError(file.string(), "is a folder, not a text file");
   std::ifstream in(file);
-  if (!in) throw InputError(file.string(), std::string("cannot open: ") + std::strerror(errno));
+  if (!in) throw InputError(file.string(), "cannot open: " + std::generic_category().message(errno));
   std::string line;
   long number = 0;
   std::vector<std::string> tokens;
@@ -69,7 +70,7 @@ void write_file_atomic(const fs::path& file, const std::string& contents) {
   const fs::path tmp = file.string() + ".tmp." + std::to_string(::getpid());
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(file.string(), std::string("cannot write: ") + std::strerror(errno));
+    if (!out) throw InputError(file.string(), "cannot write: " + std::generic_category().message(errno));
     out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
     out.flush();
     if (!out) {
@@ -100,7 +101,8 @@ void check_writable_from(const fs::path& path, fs::path existing, const std::str
     throw InputError(path.string(), option + ": cannot be made: '" + existing.string() + "' is a file");
   }
   if (::access(existing.c_str(), W_OK | X_OK) != 0)
-    throw InputError(path.string(), option + ": cannot write into '" + existing.string() + "': " + std::strerror(errno));
+    throw InputError(path.string(), option + ": cannot write into '" + existing.string() +
+                                        "': " + std::generic_category().message(errno));
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 
 #include "slam/core/errors.h"
 #include "slam/place/vocabulary.h"
@@ -128,7 +129,7 @@ void Vocabulary::save(const std::filesystem::path& file) const {
     if (!out) {
       std::error_code ec;
       std::filesystem::remove(tmp, ec);
-      throw InputError(file.string(), "cannot write the vocabulary: " + std::string(std::strerror(errno)));
+      throw InputError(file.string(), "cannot write the vocabulary: " + std::generic_category().message(errno));
     }
   }
   std::filesystem::rename(tmp, file);
@@ -136,7 +137,8 @@ void Vocabulary::save(const std::filesystem::path& file) const {
 
 Vocabulary Vocabulary::load(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file.string(), "cannot open the vocabulary file: " + std::string(std::strerror(errno)));
+  if (!in)
+    throw InputError(file.string(), "cannot open the vocabulary file: " + std::generic_category().message(errno));
   std::ostringstream ss;
   ss << in.rdbuf();
   if (in.bad()) throw InputError(file.string(), "cannot read the vocabulary file");
