@@ -5,18 +5,21 @@
 #   scripts/setup.sh --no-run   install + build only
 #   scripts/setup.sh --deps-only install the packages only (what scripts/test.sh uses)
 #   scripts/setup.sh --deps-only --with-clang   also clang and its runtimes (what scripts/fuzz.sh uses)
+#   scripts/setup.sh --deps-only --with-lint    also cppcheck and clang-tidy (what scripts/lint.sh uses)
 # Idempotent; works as root or through sudo.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 RUN_MAIN=1
 DEPS_ONLY=0
 WITH_CLANG=0
+WITH_LINT=0
 for a in "$@"; do
   case "$a" in
     --no-run) RUN_MAIN=0 ;;
     --deps-only) DEPS_ONLY=1 ;;
     --with-clang) WITH_CLANG=1 ;;
-    -h|--help) sed -n '2,9p' "$0"; exit 0 ;;
+    --with-lint) WITH_LINT=1 ;;
+    -h|--help) sed -n '2,10p' "$0"; exit 0 ;;
     *) echo "setup.sh: unknown option '$a' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -36,6 +39,8 @@ PKGS=(build-essential cmake pkg-config git ca-certificates
 command -v npm >/dev/null || PKGS+=(nodejs npm)
 # libFuzzer and the sanitizer runtimes of clang 14, Debian 12's clang.
 [ $WITH_CLANG -eq 0 ] || PKGS+=(clang libclang-rt-14-dev)
+# Static analysis (scripts/lint.sh).
+[ $WITH_LINT -eq 0 ] || PKGS+=(cppcheck clang-tidy)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
