@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Fuzzes wardmap's input readers with libFuzzer under address + undefined sanitizers (tests/fuzz,
-# README.md#fuzzing). Installs what it needs (scripts/setup.sh --deps-only --with-clang: the
+# docs/DEVELOPMENT.md#fuzzing). Installs what it needs (scripts/setup.sh --deps-only --with-clang: the
 # project's packages, clang, libclang-rt-14-dev); builds in build-fuzz/.
 #   scripts/fuzz.sh [SECONDS] [TARGET...]   each target (default: all) for SECONDS (default 60)
 # Targets: trajectory settings sequences vocabulary onnx_rewrites annotations object_files model_description glb.

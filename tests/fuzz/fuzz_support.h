@@ -1,4 +1,4 @@
-// Shared by the fuzz targets of tests/fuzz (README.md#fuzzing): the readers take paths, so a
+// Shared by the fuzz targets of tests/fuzz (docs/DEVELOPMENT.md#fuzzing): the readers take paths, so a
 // target writes the fuzzer's bytes to a file of its own process; and a reader's only way to refuse
 // an input is an InputError naming the file (wire::parse's std::runtime_error for the ONNX rewrites),
 // so any other exception is reported as a finding, with its type, and aborts.
