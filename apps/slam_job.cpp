@@ -6,11 +6,11 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string_view>
 #include <thread>
 #include <utility>
-#include <nlohmann/json.hpp>
 
 #include "apps/common.h"
 #include "apps/detection_cache.h"
@@ -18,6 +18,7 @@
 #include "apps/interrupt.h"
 #include "apps/progress.h"
 #include "slam/core/errors.h"
+#include "slam/eval/challenge_recovery.h"
 #include "slam/eval/trajectory_eval.h"
 #include "slam/front/front_process.h"
 #include "slam/io/sequence.h"
@@ -97,6 +98,60 @@ void warn_if_depth_looks_off(const fs::path& sequence, const cv::Mat& depth, dou
         sequence.string(), *mid, 100 * within, max_depth, factor);
 }
 
+// How tracking fared through a synthetic sequence's challenge segments (challenges.txt), for
+// report.json, report.md and the terminal: lost inside, localised again how long after each ends,
+// and in which submap.
+json challenges_json(const std::vector<slam::eval::ChallengeRecovery>& rec) {
+  json out = json::array();
+  for (const auto& r : rec)
+    out.push_back({{"kind", r.segment.kind},
+                   {"begin", r.segment.begin},
+                   {"end", r.segment.end},
+                   {"covered", r.covered},
+                   {"frames_inside", r.frames_inside},
+                   {"lost_inside", r.lost_inside},
+                   {"submap_before", r.submap_before},
+                   {"submap_after", r.submap_after},
+                   {"new_submap", r.new_submap()},
+                   {"localised_again_after_seconds", r.resumed_after ? json(*r.resumed_after) : json(nullptr)}});
+  return out;
+}
+
+std::string challenges_markdown(const std::vector<slam::eval::ChallengeRecovery>& rec) {
+  std::string md =
+      "\n## Challenge segments (challenges.txt)\n\n"
+      "Frames not localised inside each segment (lost or initialising), and the first frame localised at or "
+      "after its end (tracked, relocalised, or backfilled by a monocular initialisation).\n\n"
+      "| segment | kind | frames inside | not localised inside | localised again after its end | submap before -> "
+      "after |\n"
+      "|---|---|---|---|---|---|\n";
+  for (const auto& r : rec) {
+    const std::string again = r.resumed_after ? fmt::format("{:.3f} s", *r.resumed_after)
+                              : r.covered     ? std::string("never")
+                                              : std::string("(the run ends first)");
+    const std::string submaps =
+        r.resumed_after ? fmt::format("{} -> {}{}", r.submap_before, r.submap_after, r.new_submap() ? " (new)" : "")
+                        : fmt::format("{} -> -", r.submap_before);
+    md += fmt::format("| {:.3f}-{:.3f} s | {} | {} | {} | {} | {} |\n", r.segment.begin, r.segment.end, r.segment.kind,
+                      r.frames_inside, r.lost_inside, again, submaps);
+  }
+  return md;
+}
+
+std::string challenges_summary(const std::vector<slam::eval::ChallengeRecovery>& rec) {
+  int lost = 0, renewed = 0, back = 0;
+  double slowest = 0;
+  for (const auto& r : rec) {
+    lost += r.lost_inside > 0;
+    renewed += r.new_submap();
+    if (r.resumed_after) ++back, slowest = std::max(slowest, *r.resumed_after);
+  }
+  return fmt::format(
+      "challenge segments {}: lost inside {}, localised again after {} of them (at most {:.2f} s after the end), "
+      "{} in a new submap\n",
+      rec.size(), lost, back, slowest, renewed);
+}
+
 }  // namespace
 
 fs::path find_vocabulary(const fs::path& given) {
@@ -153,6 +208,9 @@ double run_slam_job(const SlamJob& job) {
     throw InputError(job.sequence.string(), "--mode rgbd needs depth images, and this sequence has none" +
                                                 enclosing_dataset_note(job.sequence));
   options.monocular = mode == "mono";
+  // A synthetic sequence's challenge segments: read before the run, so that a bad file is told now.
+  std::vector<slam::eval::ChallengeSegment> challenges;
+  if (fs::exists(info.root / "challenges.txt")) challenges = slam::eval::read_challenges(info.root / "challenges.txt");
   reader->set_decode_depth(!options.monocular);  // the monocular front-process never reads depth
   options.mapping_thread = !job.deterministic;
   if (job.realtime && job.deterministic)
@@ -344,6 +402,17 @@ double run_slam_job(const SlamJob& job) {
     std::snprintf(buf, sizeof buf, "- tracking rate %.1f %%\n", rate);
     md += buf;
     std::printf("tracking rate %.1f %%\n", rate);
+  }
+  if (!challenges.empty()) {
+    std::vector<slam::eval::FrameState> states;
+    states.reserve(stamps.size());
+    for (size_t k = 0; k < stamps.size(); ++k) states.push_back({stamps[k], statuses[k], submap_of[k]});
+    const auto recovery = slam::eval::challenge_recovery(states, challenges);
+    report["challenges"] = challenges_json(recovery);
+    if (!recovery.empty()) {
+      md += challenges_markdown(recovery);
+      std::printf("%s", challenges_summary(recovery).c_str());
+    }
   }
   std::printf("frames %zu%s, in the final map %zu, submaps %zu, median tracking time %.1f ms\n", processed,
               interrupted ? (" of " + std::to_string(reader->size()) + " (interrupted)").c_str() : "", traj.size(),

@@ -661,6 +661,27 @@ TEST(CliPipeline, VerboseRunSaysWhereTrackingWasLostAndWhy) {
   ASSERT_GT(initialised, reset) << r.output;
   EXPECT_EQ(rows[static_cast<size_t>(initialised)], (std::pair<std::string, int>{"tracked", 1}));
   EXPECT_NE(rows[static_cast<size_t>(initialised - 1)].first, "tracked");
+
+  // The report says the same from challenges.txt: the dark segment (frames 44-88; the other three
+  // begin after the 100 frames, so they are left out) lost the tracker, which came back in a new
+  // submap within 1 s of its end (issue 4's corridor_loss criterion).
+  std::ifstream report_in(dir / "run" / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(report_in);
+  ASSERT_TRUE(report.contains("challenges")) << report.dump(2);
+  const nlohmann::json& c = report.at("challenges");
+  ASSERT_EQ(c.size(), 1u) << c.dump(2);
+  EXPECT_EQ(c[0].at("kind"), "dark");
+  EXPECT_TRUE(c[0].at("covered").get<bool>());
+  EXPECT_GT(c[0].at("lost_inside").get<int>(), 0);
+  EXPECT_TRUE(c[0].at("new_submap").get<bool>());
+  EXPECT_EQ(c[0].at("submap_before").get<int>(), 0);
+  ASSERT_TRUE(c[0].at("localised_again_after_seconds").is_number()) << c.dump(2);
+  EXPECT_LE(c[0].at("localised_again_after_seconds").get<double>(), 1.0);
+  std::ifstream md_in(dir / "run" / "report.md");
+  const std::string md((std::istreambuf_iterator<char>(md_in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(md.find("## Challenge segments (challenges.txt)"), std::string::npos) << md;
+  EXPECT_NE(r.output.find("challenge segments 1: lost inside 1, localised again after 1 of them"), std::string::npos)
+      << r.output;
 }
 
 // --realtime feeds the frames at their timestamps (the run lasts at least the sequence's span) and
