@@ -17,7 +17,8 @@ struct ChallengeSegment {
 };
 
 // "t_begin t_end kind" a line, '#' comments. Throws InputError naming the file and line on a
-// malformed line, a segment that ends before it begins, or an unknown kind.
+// malformed line or a segment that ends before it begins. The kind is only reported, so any word is
+// taken (wardmap synth writes the four above).
 std::vector<ChallengeSegment> read_challenges(const std::filesystem::path& file);
 
 // One frame as `wardmap run` records it: status tracked, relocalised, backfilled (localised later by
