@@ -6,6 +6,13 @@
 #include "slam/io/text_file.h"
 
 namespace wardmap::slam::eval {
+namespace {
+
+bool localised(const std::string& status) {
+  return status == "tracked" || status == "relocalised" || status == "backfilled";
+}
+
+}  // namespace
 
 std::vector<ChallengeSegment> read_challenges(const std::filesystem::path& file) {
   std::vector<ChallengeSegment> out;
@@ -21,10 +28,6 @@ std::vector<ChallengeSegment> read_challenges(const std::filesystem::path& file)
     out.push_back(std::move(s));
   });
   return out;
-}
-
-bool localised(const std::string& status) {
-  return status == "tracked" || status == "relocalised" || status == "backfilled";
 }
 
 std::vector<ChallengeRecovery> challenge_recovery(const std::vector<FrameState>& frames,

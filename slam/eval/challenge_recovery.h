@@ -28,7 +28,6 @@ struct FrameState {
   std::string status;
   int submap = -1;
 };
-bool localised(const std::string& status);  // tracked, relocalised or backfilled
 
 struct ChallengeRecovery {
   ChallengeSegment segment;
