@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
@@ -472,6 +473,37 @@ TEST(CliPipeline, SlamThenObjectsOnASyntheticWard) {
   const std::string objects = read_all(dir / "run" / "objects.json");
   EXPECT_NE(objects.find("\"class\": \"bed\""), std::string::npos) << objects;
   expect_upright_map_with_points(dir / "run");
+}
+
+// scripts/synthetic-figures.sh: renders what its cache lacks, runs, and tabulates the ATE each run
+// printed; a second call reuses the rendered sequence.
+TEST(CliScripts, SyntheticFiguresTabulatesTheRunsAteAndReusesItsRenders) {
+  const fs::path dir = scratch_dir();
+  const std::string script = shq(source_dir() / "scripts" / "synthetic-figures.sh");
+  const std::string args = " --mode rgbd --layouts 2 --scenarios ward --variants quick --frames 60 --cache " +
+                           shq(dir / "cache") + " --out " + shq(dir / "runs") + " --wardmap " +
+                           shq(binary_dir() / "apps" / "wardmap");
+  std::string first;
+  ASSERT_EQ(run_command(script + args, &first), 0) << first;
+  EXPECT_NE(first.find("rendering"), std::string::npos) << first;
+  const fs::path report = dir / "runs" / "rgbd" / "ward_quick_2_f60" / "report.json";
+  ASSERT_TRUE(fs::exists(report)) << first;
+  std::ifstream in(report);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  ASSERT_EQ(j.at("tracking_rate").get<double>(), 100.0) << first;
+  char cell[32];
+  std::snprintf(cell, sizeof cell, "| ward quick | %.2f |", 100 * j.at("ate_se3").at("rmse").get<double>());
+  EXPECT_NE(first.find(cell), std::string::npos) << cell << "\n" << first;
+  EXPECT_NE(first.find("rgbd: 1 runs"), std::string::npos) << first;
+
+  std::string second;
+  ASSERT_EQ(run_command(script + args, &second), 0) << second;
+  EXPECT_EQ(second.find("rendering"), std::string::npos) << second;
+  EXPECT_NE(second.find(cell), std::string::npos) << second;
+
+  std::string bad;
+  EXPECT_EQ(run_command(script + " --mode stereo", &bad), 2);
+  EXPECT_NE(bad.find("--mode takes rgbd, mono or both, not 'stereo'"), std::string::npos) << bad;
 }
 
 }  // namespace
