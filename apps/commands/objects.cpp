@@ -1,14 +1,14 @@
 // wardmap eval-objects: object figures of a run folder against a synthetic sequence's ground truth.
 // wardmap compare: both association modes on the same sequences, one table (Assoc. Table II).
-#include <nlohmann/json.hpp>
-
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <utility>
 
 #include "apps/commands/commands.h"
 #include "apps/common.h"
+#include "apps/compare_summary.h"
 #include "apps/semantic_job.h"
 #include "slam/core/errors.h"
 #include "slam/eval/trajectory_eval.h"
@@ -118,6 +118,7 @@ struct CompareArgs {
   ReaderArgs reader;
   std::string json;
   std::vector<std::string> set;  // --set KEY=VALUE
+  CompareTargets targets;
 };
 
 void compare(CompareArgs& a) {
@@ -143,6 +144,7 @@ void compare(CompareArgs& a) {
   std::printf("%-28s | %-12s | %9s | %7s | %9s | %8s | %8s | %7s\n", "sequence", "association", "accuracy", "objects",
               "Object_GT", "pos.err", "max err", "ID sw.");
   std::printf("%s\n", std::string(110, '-').c_str());
+  std::vector<CompareRow> summary;
   for (const auto& s : a.sequences) {
     const std::string name = folder_name(s);
     SemanticJob job = job_for(s);
@@ -160,8 +162,10 @@ void compare(CompareArgs& a) {
                       {"position_error_mean", e->position_error_mean}, {"position_error_max", e->position_error_max},
                       {"id_switches", e->id_switches}, {"dropped", e->dropped}, {"identified", e->identified}});
     }
+    summary.push_back({name, *r.evaluation, *r.baseline_evaluation});
     std::fflush(stdout);
   }
+  std::printf("\n%s", format_compare_summary(summary, a.targets).c_str());
   if (!a.json.empty()) slam::io::write_file_atomic(a.json, rows.dump(2) + "\n");
 }
 
@@ -190,6 +194,15 @@ void add_compare_command(CLI::App& app) {
                                  "sequences with ground-truth poses and print one table, as the paper's Table II");
   cmd->add_option("sequences", a->sequences, "Synthetic sequences (wardmap synth outputs)")->required();
   cmd->add_option("--json", a->json, "Also write the table as JSON");
+  cmd->add_option("--min-accuracy", a->targets.min_accuracy,
+                  "The summary under the table counts the sequences whose association accuracy (%) is at least this")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 100.0));
+  cmd->add_option(
+         "--max-position-error", a->targets.max_position_error,
+         "The summary under the table counts the sequences whose mean landmark position error (m) is at most this")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   add_semantic_options(cmd, a->job);
   add_set_option(cmd, a->set, "The same for every sequence; without --settings, semantics.* and detection.* only");
   add_reader_options(cmd, a->reader);

@@ -1001,6 +1001,8 @@ TEST(CliObjects, EvalObjectsAndCompare) {
   const CliResult table =
       wardmap_cli("-q compare " + shq(dir / "ward") + " --no-embedding --json " + shq(dir / "compare.json"));
   ASSERT_EQ(table.code, 0) << table.output;
+  EXPECT_NE(table.output.find("hierarchical association on 1 sequence:\n  accuracy >= 97 %: "), std::string::npos)
+      << table.output;
   std::ifstream rows_in(dir / "compare.json");
   const nlohmann::json rows = nlohmann::json::parse(rows_in);
   ASSERT_EQ(rows.size(), 2u);
