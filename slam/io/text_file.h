@@ -23,7 +23,8 @@ void write_file_atomic(const std::filesystem::path& file, const std::string& con
 
 // Checked before a long run whose outputs are written at its end, so that a wrong --out is told
 // at once rather than after the run it would lose. `option` names the flag in the message ("--out").
-// Neither makes anything. check_output_folder throws InputError(folder, ...) unless `folder` is a
+// Neither leaves anything (each makes and removes an empty folder in the nearest existing one, the
+// only sure test of writing there). check_output_folder throws InputError(folder, ...) unless `folder` is a
 // folder the process can write into or can make (its nearest existing ancestor is such a folder).
 void check_output_folder(const std::filesystem::path& folder, const std::string& option);
 // The same for a file written at the end: not a folder, in a folder that is or can be made writable.

@@ -282,6 +282,10 @@ TEST(CliBadInput, OutCannotBeMade) {
   }
   expect_one_line_error(wardmap_cli("vocabulary train " + shq(root) + " --out " + shq(root / "out.txt" / "words.bin")),
                         in_the_way);
+  // Where access() says yes but nothing can be made (root on /proc; NFS with root squashing).
+  const CliResult r = wardmap_cli("run " + shq(root) + " --out /proc/wardmap-run");
+  expect_one_line_error(r, "/proc/wardmap-run: --out: cannot write into '/proc'");
+  EXPECT_EQ(r.output.find("frames"), std::string::npos) << "it ran first:\n" << r.output;
   expect_one_line_error(wardmap_cli("vocabulary train " + shq(root) + " --out " + shq(root)),
                         "--out names a folder; it must be a file");
   EXPECT_EQ(read_all(root / "out.txt"), "not a folder");
