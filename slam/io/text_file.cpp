@@ -100,15 +100,12 @@ void check_writable_from(const fs::path& path, fs::path existing, const std::str
     if (existing == path) throw InputError(path.string(), option + " names a file; it must be a folder (new or existing)");
     throw InputError(path.string(), option + ": cannot be made: '" + existing.string() + "' is a file");
   }
-  auto refuse = [&](int error) {
-    throw InputError(path.string(), option + ": cannot write into '" + existing.string() +
-                                        "': " + std::generic_category().message(error));
-  };
-  if (::access(existing.c_str(), W_OK | X_OK) != 0) refuse(errno);
-  // access() answers yes to root for every folder, and to anyone on NFS with root squashing or on
-  // pseudo file systems such as /proc: make and remove an empty folder there to be sure.
+  // Made and removed at once: access() would answer yes to root for every folder, and to anyone on
+  // NFS with root squashing or on pseudo file systems such as /proc.
   std::string probe = (existing / ".wardmap-write-check-XXXXXX").string();
-  if (::mkdtemp(probe.data()) == nullptr) refuse(errno);
+  if (::mkdtemp(probe.data()) == nullptr)
+    throw InputError(path.string(), option + ": cannot write into '" + existing.string() +
+                                        "': " + std::generic_category().message(errno));
   ::rmdir(probe.c_str());
 }
 
