@@ -43,6 +43,8 @@ void FrontOptions::validate(const std::filesystem::path& file) const {
   check_range(t.keyframe_max_frames, 1, 10000, "tracking.keyframe_max_frames", file);
   check_range(t.keyframe_max_gap_seconds, 0.0, 3600.0, "tracking.keyframe_max_gap_seconds", file);
   check_range(t.keyframe_ref_ratio, 0.0, 1.0, "tracking.keyframe_ref_ratio", file);
+  check_range(t.keyframe_ref_min_observations, 1, 100, "tracking.keyframe_ref_min_observations", file);
+  check_range(t.keyframe_ref_min_observations_mono, 1, 100, "tracking.keyframe_ref_min_observations_mono", file);
   check_range(t.keyframe_close_tracked, 0, 100000, "tracking.keyframe_close_tracked", file);
   check_range(t.keyframe_close_untracked, 0, 100000, "tracking.keyframe_close_untracked", file);
   check_range(t.lost_frames_to_reset, 1, 100000, "tracking.lost_frames_to_reset", file);
@@ -161,6 +163,8 @@ FrontOptions load_front_options(const io::Settings& settings) {
   tk.read("keyframe_max_frames", k.keyframe_max_frames);
   tk.read("keyframe_max_gap_seconds", k.keyframe_max_gap_seconds);
   tk.read("keyframe_ref_ratio", k.keyframe_ref_ratio);
+  tk.read("keyframe_ref_min_observations", k.keyframe_ref_min_observations);
+  tk.read("keyframe_ref_min_observations_mono", k.keyframe_ref_min_observations_mono);
   tk.read("keyframe_close_tracked", k.keyframe_close_tracked);
   tk.read("keyframe_close_untracked", k.keyframe_close_untracked);
   tk.read("lost_frames_to_reset", k.lost_frames_to_reset);

@@ -59,6 +59,13 @@ struct TrackingOptions {
   // and keyframes every other frame cost more than BAs cut short (docs/EXPERIMENTS.md).
   double keyframe_max_gap_seconds = 0.15;  // tracking.keyframe_max_gap_seconds
   double keyframe_ref_ratio = 0.75;    // tracking.keyframe_ref_ratio: tracked / reference-keyframe points
+  // The reference keyframe's points the ratio counts: those seen by at least this many keyframes (at
+  // most 2 while the submap holds 2 keyframes). ORB-SLAM counts 3 in every mode. A point made from a
+  // keyframe's depth is whole from its first keyframe; in a fast turn the view moves on before later
+  // keyframes see it again, so with 3 the count lagged and keyframes thinned out where the view changes
+  // fastest (synthetic turns, docs/EXPERIMENTS.md). Monocular points need their second view to exist.
+  int keyframe_ref_min_observations = 2;       // tracking.keyframe_ref_min_observations
+  int keyframe_ref_min_observations_mono = 3;  // tracking.keyframe_ref_min_observations_mono
   int keyframe_close_tracked = 100;    // tracking.keyframe_close_tracked
   int keyframe_close_untracked = 70;   // tracking.keyframe_close_untracked (ORB-SLAM: 70)
   int min_depth_points = 100;          // tracking.min_depth_points: new close points per keyframe

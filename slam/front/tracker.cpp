@@ -38,6 +38,7 @@ Tracker::Tracker(const FrontOptions& options, const PinholeCamera& camera, Local
   if (options_.monocular) {
     options_.tracking.motion_radius = options_.tracking.motion_radius_mono;
     options_.tracking.keyframe_ref_ratio = options_.tracking.keyframe_ref_ratio_mono;
+    options_.tracking.keyframe_ref_min_observations = options_.tracking.keyframe_ref_min_observations_mono;
   }
 }
 
@@ -498,7 +499,8 @@ KeyFrameEvidence Tracker::evidence(const Frame& frame, int inliers) const {
   e.frames_since_keyframe = static_cast<int>(frame.id() - last_keyframe_frame_);
   e.tracked_inliers = inliers;
   e.keyframes_in_map = static_cast<int>(submap_->num_keyframes());
-  const int min_obs = e.keyframes_in_map <= 2 ? 2 : 3;
+  const int min_obs_setting = options_.tracking.keyframe_ref_min_observations;
+  const int min_obs = e.keyframes_in_map <= 2 ? std::min(2, min_obs_setting) : min_obs_setting;
   e.reference_points = reference_ ? reference_->tracked_points(min_obs) : 0;
   const FrameFeatures& f = frame.features();
   for (size_t i = 0; i < frame.size(); ++i) {

@@ -67,6 +67,19 @@ TEST(FrontOptions, FlowIsOnInMonocularByDefaultAndHasAKeyPerMode) {
   EXPECT_EQ(budget.tracking.flow_budget_frames, 10);
 }
 
+// The keyframe ratio test counts the reference keyframe's points seen by 2 keyframes in RGB-D (a
+// point made from depth is whole at once), by 3 in monocular (ORB-SLAM's count); a key per mode.
+TEST(FrontOptions, ReferencePointsObservationsHaveAKeyPerMode) {
+  const FrontOptions d = load_front_options(io::parse_settings(kBase, "t.yaml"));
+  EXPECT_EQ(d.tracking.keyframe_ref_min_observations, 2);
+  EXPECT_EQ(d.tracking.keyframe_ref_min_observations_mono, 3);
+  const FrontOptions o = load_front_options(io::parse_settings(
+      std::string(kBase) + "tracking:\n  keyframe_ref_min_observations: 3\n  keyframe_ref_min_observations_mono: 2\n",
+      "t.yaml"));
+  EXPECT_EQ(o.tracking.keyframe_ref_min_observations, 3);
+  EXPECT_EQ(o.tracking.keyframe_ref_min_observations_mono, 2);
+}
+
 TEST(FrontOptions, OrbSlamStereoKeysSetTheVirtualBaselineAndCloseDepth) {
   const std::string text = std::string(kBase) + "Stereo.b: 0.07\nStereo.ThDepth: 40.0\n";
   const FrontOptions o = load_front_options(io::parse_settings(text, "t.yaml"));
@@ -117,6 +130,7 @@ TEST(FrontOptions, InvalidValuesNameTheKey) {
   expect_error("tracking:\n  flow_extend_mono: 2\n", "tracking.flow_extend_mono");
   expect_error("tracking:\n  flow_budget_ms_mono: -1\n", "tracking.flow_budget_ms_mono");
   expect_error("tracking:\n  flow_budget_frames: 0\n", "tracking.flow_budget_frames");
+  expect_error("tracking:\n  keyframe_ref_min_observations: 0\n", "tracking.keyframe_ref_min_observations");
   expect_error("mapping:\n  redundant_ratio: 1.5\n", "mapping.redundant_ratio");
   expect_error("mapping:\n  min_busy_seconds: -0.1\n", "mapping.min_busy_seconds");
   expect_error("mapping:\n  min_parallax_deg_mono: 95\n", "mapping.min_parallax_deg_mono");
