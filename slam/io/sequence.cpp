@@ -123,6 +123,32 @@ void SequenceReader::finish_opening() {
                   entries_.front().timestamp, entries_.back().timestamp);
     info_.ground_truth_unmatched = buf;
   }
+  // A motion-capture recording usually starts before the camera and stops after it (TUM's do, by
+  // seconds): its poses outside the frames would count as untracked time in the tracking rate,
+  // whose denominator is the sequence's duration (EVALUATION.md).
+  const size_t poses = ground_truth_.size();
+  const auto [before, after] = cut_ground_truth_to_frames();
+  if (before + after > 0)
+    add_note("ground-truth poses outside the frames left out: " + std::to_string(before) + " before the first, " +
+             std::to_string(after) + " after the last (" + std::to_string(poses - before - after) + " of " +
+             std::to_string(poses) + " kept)");
+}
+
+std::pair<size_t, size_t> SequenceReader::cut_ground_truth_to_frames() {
+  if (entries_.empty() || ground_truth_.empty()) return {0, 0};
+  const double half_period = info_.fps > 0 ? 0.5 / info_.fps : 0.0;
+  const double t0 = entries_.front().timestamp - half_period, t1 = entries_.back().timestamp + half_period;
+  Trajectory gt;
+  gt.indexed = ground_truth_.indexed;
+  size_t before = 0, after = 0;
+  for (size_t k = 0; k < ground_truth_.size(); ++k) {
+    const double t = ground_truth_.timestamps[k];
+    if (t < t0) ++before;
+    else if (t > t1) ++after;
+    else gt.push_back(t, ground_truth_.poses[k]);
+  }
+  ground_truth_ = std::move(gt);
+  return {before, after};
 }
 
 void SequenceReader::sort_numbered_images(NumberedImages& images, const std::string& what) {
@@ -155,16 +181,9 @@ void SequenceReader::keep_frames(size_t first, size_t count) {
                                               " is past the end: the sequence has " + std::to_string(total) +
                                               " frames (0-" + std::to_string(total - 1) + ")");
   const size_t last = count == 0 ? total : std::min(total, first + count);  // one past the last kept
-  const double half_period = info_.fps > 0 ? 0.5 / info_.fps : 0.0;
-  const double t0 = entries_[first].timestamp - half_period, t1 = entries_[last - 1].timestamp + half_period;
   entries_.erase(entries_.begin() + static_cast<std::ptrdiff_t>(last), entries_.end());
   entries_.erase(entries_.begin(), entries_.begin() + static_cast<std::ptrdiff_t>(first));
-  Trajectory gt;
-  gt.indexed = ground_truth_.indexed;
-  for (size_t k = 0; k < ground_truth_.size(); ++k)
-    if (ground_truth_.timestamps[k] >= t0 && ground_truth_.timestamps[k] <= t1)
-      gt.push_back(ground_truth_.timestamps[k], ground_truth_.poses[k]);
-  ground_truth_ = std::move(gt);
+  cut_ground_truth_to_frames();
   first_frame_ += first;
   update_counts();  // the nominal rate (info_.fps) stays
   add_note("frames " + std::to_string(first_frame_) + "-" + std::to_string(first_frame_ + entries_.size() - 1) +

@@ -83,7 +83,8 @@ class SequenceReader {
   void set_depth_factor(double units_per_metre) {
     if (info_.has_depth) info_.depth_factor = units_per_metre;
   }
-  // The ground-truth trajectory as the dataset gives it (may be denser than the frames).
+  // The ground-truth trajectory as the dataset gives it (may be denser than the frames), within the
+  // frames' time span: poses recorded before the first frame or after the last are left out.
   const Trajectory& ground_truth() const { return ground_truth_; }
   // Calibration found beside the dataset (a settings.yaml in its folder), fitted to the images' size
   // (fit_calibration_size; a note when it differed a little).
@@ -121,6 +122,9 @@ class SequenceReader {
   void update_counts();
   // Attaches to each entry the ground-truth pose closest in time within max_dt.
   void attach_ground_truth_by_time(double max_dt);
+  // Keeps the ground-truth poses within the frames' time span (half a frame period either side);
+  // returns how many lay before and after it.
+  std::pair<size_t, size_t> cut_ground_truth_to_frames();
 
   SequenceInfo info_;
   std::vector<Entry> entries_;

@@ -265,6 +265,43 @@ TEST(EvalCli, AStretchOfADatasetIsScoredOnItsOwnFrames) {
   EXPECT_NE(refused.output.find("give the dataset folder as --gt"), std::string::npos) << refused.output;
 }
 
+TEST(EvalCli, GroundTruthRecordedBeyondTheFramesIsNotUntrackedTime) {
+  const fs::path dir = scratch_dir();
+  // TUM RGB-D as recorded: the motion capture (100 Hz) runs from 1 s before the first of 10 frames
+  // (30 Hz) to 1 s after the last; the estimate has every frame, exact.
+  std::string rgb, depth, gt, est;
+  for (int i = 0; i < 10; ++i) {
+    const std::string n = std::to_string(i), t = std::to_string(2.0 + i / 30.0);
+    write_image(dir / "tum" / "rgb" / (n + ".png"), i);
+    write_depth(dir / "tum" / "depth" / (n + ".png"), 5000);
+    rgb += t + " rgb/" + n + ".png\n";
+    depth += t + " depth/" + n + ".png\n";
+    est += t + " " + std::to_string(0.1 * (2.0 + i / 30.0)) + " 0 0 0 0 0 1\n";
+  }
+  for (int k = 100; k <= 230; ++k) gt += std::to_string(k / 100.0) + " " + std::to_string(0.1 * k / 100.0) + " 0 0 0 0 0 1\n";
+  write_text(dir / "tum" / "rgb.txt", rgb);
+  write_text(dir / "tum" / "depth.txt", depth);
+  write_text(dir / "tum" / "groundtruth.txt", gt);
+  write_text(dir / "est.txt", est);
+  const fs::path out = dir / "eval.json";
+  const CliResult r = wardmap_cli("eval --gt " + shq(dir / "tum") + " --est " + shq(dir / "est.txt") +
+                                  " --align none --json " + shq(out));
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(out);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_NEAR(j["tracking_rate"].get<double>(), 100.0, 0.01);  // was 30 % counting the capture's 2.3 s
+  EXPECT_EQ(j["pairs"].get<int>(), 10);
+  EXPECT_LT(j["ate"]["rmse"].get<double>(), 1e-3);  // paired with the capture pose within 5 ms, at 0.1 m/s
+
+  // The whole motion capture, as a bare file: no frames to cut it to, so its span is the sequence.
+  write_text(dir / "gt.txt", gt);
+  const CliResult bare = wardmap_cli("eval --gt " + shq(dir / "gt.txt") + " --est " + shq(dir / "est.txt") +
+                                     " --align none --json " + shq(out));
+  ASSERT_EQ(bare.code, 0) << bare.output;
+  std::ifstream in2(out);
+  EXPECT_LT(nlohmann::json::parse(in2)["tracking_rate"].get<double>(), 50.0);
+}
+
 TEST(EvalCli, SharedKittiGroundTruthAgainstItselfIsZero) {
   WARDMAP_REQUIRE_DATA("kitti-odometry-03");
   const fs::path data = shared_data_dir() / "kitti-odometry-03";

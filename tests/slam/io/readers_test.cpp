@@ -117,6 +117,24 @@ TEST(TumReader, GroundTruthAtOtherTimesIsExplained) {
   EXPECT_EQ(open_sequence(root)->info().ground_truth_unmatched, "");
 }
 
+TEST(TumReader, GroundTruthBeyondTheFramesIsLeftOut) {
+  const fs::path root = scratch_dir();
+  test::make_tum(root);  // frames at 1.0, 1.0333, 1.1 (30 Hz nominal: half a period is 1/60 s)
+  write_text(root / "groundtruth.txt",
+             "0.5 0 0 0 0 0 0 1\n0.985 0 0 0 0 0 0 1\n1.0 0 0 0 0 0 0 1\n1.034 1 0 0 0 0 0 1\n"
+             "1.066 2 0 0 0 0 0 1\n1.1 3 0 0 0 0 0 1\n1.11 3 0 0 0 0 0 1\n1.2 4 0 0 0 0 0 1\n1.9 5 0 0 0 0 0 1\n");
+  auto r = open_sequence(root);
+  ASSERT_EQ(r->ground_truth().size(), 6u);  // 0.985 and 1.11 are within half a period
+  EXPECT_DOUBLE_EQ(r->ground_truth().timestamps.front(), 0.985);
+  EXPECT_DOUBLE_EQ(r->ground_truth().timestamps.back(), 1.11);
+  EXPECT_NE(r->info().notes.find("ground-truth poses outside the frames left out: 1 before the first, 2 after the "
+                                 "last (6 of 9 kept)"),
+            std::string::npos)
+      << r->info().notes;
+  test::make_tum(root);  // within the frames: nothing to say
+  EXPECT_EQ(open_sequence(root)->info().notes.find("ground truth"), std::string::npos);
+}
+
 TEST(SevenScenesReader, DepthInMillimetresAndInvalidMarker) {
   const fs::path root = scratch_dir();
   test::make_seven_scenes(root);
