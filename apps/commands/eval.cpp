@@ -3,9 +3,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <vector>
 
 #include "apps/commands/commands.h"
 #include "apps/common.h"
@@ -30,6 +32,30 @@ struct EvalArgs {
   ReaderArgs reader;
 };
 
+// A run folder's frames.csv lists every frame the run read, tracked or not: the sequence's span.
+// The ground truth is cut to it (half a frame period either side), as a dataset folder's is by its
+// reader, so that poses recorded before or after the camera do not count as untracked time.
+Trajectory cut_to_run_frames(const Trajectory& gt, const fs::path& frames_csv) {
+  std::vector<double> t;
+  slam::io::for_each_data_line(frames_csv, true, [&](long line, const std::vector<std::string>& tok) {
+    if (line == 1 && tok.at(0) == "timestamp") return;  // the header
+    t.push_back(slam::io::parse_double(tok.at(0), frames_csv, line, "timestamp"));
+  });
+  if (t.empty()) return gt;
+  std::vector<double> gaps;
+  for (size_t i = 1; i < t.size(); ++i) gaps.push_back(t[i] - t[i - 1]);
+  double half_period = 0;
+  if (!gaps.empty()) {
+    std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+    half_period = 0.5 * gaps[gaps.size() / 2];
+  }
+  Trajectory cut = gt.within(t.front() - half_period, t.back() + half_period);
+  if (cut.size() < gt.size())
+    spdlog::info("ground truth cut to the run's frames ({}): {} of its {} poses", frames_csv.string(), cut.size(),
+                 gt.size());
+  return cut;
+}
+
 nlohmann::json stats_json(const slam::eval::ErrorStats& s) {
   return {{"rmse", s.rmse}, {"mean", s.mean}, {"median", s.median}, {"max", s.max}, {"min", s.min}, {"std", s.std}};
 }
@@ -48,6 +74,8 @@ void run_eval(const EvalArgs& a) {
     if (a.reader.first_frame > 0 || a.reader.frames > 0)
       throw InputError(a.gt, "--first-frame and --frames cut a dataset's frames: give the dataset folder as --gt");
     gt = slam::io::read_trajectory(a.gt, slam::io::PoseFormat::Auto);
+    if (const fs::path frames = fs::path(a.est) / "frames.csv"; !gt.indexed && fs::is_directory(a.est) && fs::exists(frames))
+      gt = cut_to_run_frames(gt, frames);
   }
   const std::string est_file = file_or_run_file(a.est, "trajectory.txt").string();  // a pose file, or a run's
   Trajectory est = slam::io::read_trajectory(est_file, slam::io::parse_pose_format(a.est_format));
@@ -63,6 +91,13 @@ void run_eval(const EvalArgs& a) {
     spdlog::warn("one file has no timestamps (KITTI format): poses are paired by their position in the files; "
                  "give the dataset folder to --gt to pair by time");
 
+  if (!sequence && !fs::is_directory(a.est) && !gt.indexed && !est.indexed && !est.empty() &&
+      (est.timestamps.front() - gt.timestamps.front() > 1.0 || gt.timestamps.back() - est.timestamps.back() > 1.0))
+    spdlog::warn("the ground truth runs {:.1f} s before and {:.1f} s after the estimate, and all of it counts in the "
+                 "tracking rate; if the camera's frames did not span it, give the dataset folder as --gt or the run "
+                 "folder as --est",
+                 std::max(0.0, est.timestamps.front() - gt.timestamps.front()),
+                 std::max(0.0, gt.timestamps.back() - est.timestamps.back()));
   slam::eval::AssociationOptions assoc;
   assoc.max_dt = a.max_dt;
   const auto pairs = slam::eval::associate(gt, est, assoc);
@@ -146,9 +181,13 @@ void add_eval_command(CLI::App& app) {
       "RPE and tracking rate, as defined in docs/EVALUATION.md. Pose files: TUM (8 values a line) or KITTI (12).\n"
       "Also the scale drift: the estimate's displacement over each second against the truth's, divided by their\n"
       "mean; the slope of their least-squares line in % a second (negative: the estimate shrinks along the run).");
-  cmd->add_option("--gt", args->gt, "Ground truth: a TUM or KITTI pose file, or a dataset folder")->required();
+  cmd->add_option("--gt", args->gt,
+                  "Ground truth: a TUM or KITTI pose file, or a dataset folder (its poses before the first frame or "
+                  "after the last are left out of the tracking rate)")
+      ->required();
   cmd->add_option("--est", args->est,
-                  "Estimated trajectory: a TUM or KITTI pose file, or a run folder (its trajectory.txt)")
+                  "Estimated trajectory: a TUM or KITTI pose file, or a run folder (its trajectory.txt; a pose file "
+                  "as --gt is then cut to the frames of the run's frames.csv)")
       ->required();
   cmd->add_option("--align", args->align, "Alignment: sim3 (monocular), se3 (RGB-D, stereo) or none")->capture_default_str()
       ->check(CLI::IsMember({"sim3", "se3", "none"}));

@@ -19,6 +19,14 @@ struct Trajectory {
     timestamps.push_back(t);
     poses.push_back(T);
   }
+  // The poses with t0 <= timestamp <= t1 (`indexed` kept).
+  Trajectory within(double t0, double t1) const {
+    Trajectory out;
+    out.indexed = indexed;
+    for (size_t k = 0; k < size(); ++k)
+      if (timestamps[k] >= t0 && timestamps[k] <= t1) out.push_back(timestamps[k], poses[k]);
+    return out;
+  }
 };
 
 }  // namespace wardmap::slam

@@ -138,16 +138,10 @@ std::pair<size_t, size_t> SequenceReader::cut_ground_truth_to_frames() {
   if (entries_.empty() || ground_truth_.empty()) return {0, 0};
   const double half_period = info_.fps > 0 ? 0.5 / info_.fps : 0.0;
   const double t0 = entries_.front().timestamp - half_period, t1 = entries_.back().timestamp + half_period;
-  Trajectory gt;
-  gt.indexed = ground_truth_.indexed;
-  size_t before = 0, after = 0;
-  for (size_t k = 0; k < ground_truth_.size(); ++k) {
-    const double t = ground_truth_.timestamps[k];
-    if (t < t0) ++before;
-    else if (t > t1) ++after;
-    else gt.push_back(t, ground_truth_.poses[k]);
-  }
-  ground_truth_ = std::move(gt);
+  const auto& t = ground_truth_.timestamps;
+  const size_t before = static_cast<size_t>(std::count_if(t.begin(), t.end(), [&](double x) { return x < t0; }));
+  const size_t after = static_cast<size_t>(std::count_if(t.begin(), t.end(), [&](double x) { return x > t1; }));
+  ground_truth_ = ground_truth_.within(t0, t1);
   return {before, after};
 }
 

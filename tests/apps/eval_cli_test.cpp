@@ -269,7 +269,7 @@ TEST(EvalCli, GroundTruthRecordedBeyondTheFramesIsNotUntrackedTime) {
   const fs::path dir = scratch_dir();
   // TUM RGB-D as recorded: the motion capture (100 Hz) runs from 1 s before the first of 10 frames
   // (30 Hz) to 1 s after the last; the estimate has every frame, exact.
-  std::string rgb, depth, gt, est;
+  std::string rgb, depth, gt, est, est_late;
   for (int i = 0; i < 10; ++i) {
     const std::string n = std::to_string(i), t = std::to_string(2.0 + i / 30.0);
     write_image(dir / "tum" / "rgb" / (n + ".png"), i);
@@ -277,6 +277,7 @@ TEST(EvalCli, GroundTruthRecordedBeyondTheFramesIsNotUntrackedTime) {
     rgb += t + " rgb/" + n + ".png\n";
     depth += t + " depth/" + n + ".png\n";
     est += t + " " + std::to_string(0.1 * (2.0 + i / 30.0)) + " 0 0 0 0 0 1\n";
+    if (i >= 5) est_late += t + " " + std::to_string(0.1 * (2.0 + i / 30.0)) + " 0 0 0 0 0 1\n";
   }
   for (int k = 100; k <= 230; ++k) gt += std::to_string(k / 100.0) + " " + std::to_string(0.1 * k / 100.0) + " 0 0 0 0 0 1\n";
   write_text(dir / "tum" / "rgb.txt", rgb);
@@ -293,13 +294,22 @@ TEST(EvalCli, GroundTruthRecordedBeyondTheFramesIsNotUntrackedTime) {
   EXPECT_EQ(j["pairs"].get<int>(), 10);
   EXPECT_LT(j["ate"]["rmse"].get<double>(), 1e-3);  // paired with the capture pose within 5 ms, at 0.1 m/s
 
-  // The whole motion capture, as a bare file: no frames to cut it to, so its span is the sequence.
+  // The motion capture as a bare file: cut to a run folder's frames (frames.csv), not to a bare
+  // estimate's, which has no frames to cut to.
   write_text(dir / "gt.txt", gt);
-  const CliResult bare = wardmap_cli("eval --gt " + shq(dir / "gt.txt") + " --est " + shq(dir / "est.txt") +
-                                     " --align none --json " + shq(out));
-  ASSERT_EQ(bare.code, 0) << bare.output;
-  std::ifstream in2(out);
-  EXPECT_LT(nlohmann::json::parse(in2)["tracking_rate"].get<double>(), 50.0);
+  const auto rate_against = [&](const fs::path& est_arg) {
+    const CliResult e = wardmap_cli("eval --gt " + shq(dir / "gt.txt") + " --est " + shq(est_arg) +
+                                    " --align none --json " + shq(out));
+    EXPECT_EQ(e.code, 0) << e.output;
+    std::ifstream j(out);
+    return nlohmann::json::parse(j)["tracking_rate"].get<double>();
+  };
+  EXPECT_LT(rate_against(dir / "est.txt"), 50.0);
+  std::string frames = "timestamp,status,submap\n";
+  for (int i = 0; i < 10; ++i) frames += std::to_string(2.0 + i / 30.0) + (i < 5 ? ",lost,-1\n" : ",tracked,0\n");
+  write_text(dir / "run" / "frames.csv", frames);
+  write_text(dir / "run" / "trajectory.txt", est_late);
+  EXPECT_NEAR(rate_against(dir / "run"), 50.0, 1.0);  // frames 0-4 lost: half the frames' span
 }
 
 TEST(EvalCli, SharedKittiGroundTruthAgainstItselfIsZero) {
