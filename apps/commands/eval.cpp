@@ -42,13 +42,7 @@ Trajectory cut_to_run_frames(const Trajectory& gt, const fs::path& frames_csv) {
     t.push_back(slam::io::parse_double(tok.at(0), frames_csv, line, "timestamp"));
   });
   if (t.empty()) return gt;
-  std::vector<double> gaps;
-  for (size_t i = 1; i < t.size(); ++i) gaps.push_back(t[i] - t[i - 1]);
-  double half_period = 0;
-  if (!gaps.empty()) {
-    std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
-    half_period = 0.5 * gaps[gaps.size() / 2];
-  }
+  const double half_period = 0.5 * slam::eval::median_gap(t);
   Trajectory cut = gt.within(t.front() - half_period, t.back() + half_period);
   if (cut.size() < gt.size())
     spdlog::info("ground truth cut to the run's frames ({}): {} of its {} poses", frames_csv.string(), cut.size(),

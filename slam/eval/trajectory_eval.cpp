@@ -182,15 +182,16 @@ ScaleDriftResult compute_scale_drift(const Trajectory& gt, const Trajectory& est
   return r;
 }
 
+double median_gap(const std::vector<double>& t) {
+  if (t.size() < 2) return 0.0;
+  std::vector<double> g(t.size() - 1);
+  for (size_t i = 0; i + 1 < t.size(); ++i) g[i] = t[i + 1] - t[i];
+  std::nth_element(g.begin(), g.begin() + g.size() / 2, g.end());
+  return g[g.size() / 2];
+}
+
 double tracking_rate(const Trajectory& gt, const Trajectory& est, const AssociationOptions& options) {
   if (gt.empty() || est.empty()) return 0.0;
-  const auto median_gap = [](const std::vector<double>& t) {
-    if (t.size() < 2) return 0.0;
-    std::vector<double> g(t.size() - 1);
-    for (size_t i = 0; i + 1 < t.size(); ++i) g[i] = t[i + 1] - t[i];
-    std::nth_element(g.begin(), g.begin() + g.size() / 2, g.end());
-    return g[g.size() / 2];
-  };
   // Duration each ground-truth sample stands for: the gap to the next one (the last: the median gap).
   const double gt_gap = median_gap(gt.timestamps);
   std::vector<double> span(gt.size(), gt_gap > 0 ? gt_gap : 1.0);

@@ -74,6 +74,9 @@ ScaleDriftResult compute_scale_drift(const Trajectory& gt, const Trajectory& est
                                      const std::vector<std::pair<size_t, size_t>>& pairs, double window_seconds = 1.0,
                                      double min_chord = 0.05);
 
+// The median of the gaps between consecutive timestamps (0 with fewer than two): a sequence's frame period.
+double median_gap(const std::vector<double>& timestamps);
+
 // Tracking rate (%): the share of the sequence's duration covered by frames with an estimated pose.
 // Each ground-truth sample stands for the time up to the next one; it counts as tracked when an
 // estimate lies within max(max_dt, half the estimate's median frame period) of it (so a 100 Hz

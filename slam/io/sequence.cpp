@@ -138,9 +138,9 @@ std::pair<size_t, size_t> SequenceReader::cut_ground_truth_to_frames() {
   if (entries_.empty() || ground_truth_.empty()) return {0, 0};
   const double half_period = info_.fps > 0 ? 0.5 / info_.fps : 0.0;
   const double t0 = entries_.front().timestamp - half_period, t1 = entries_.back().timestamp + half_period;
-  const auto& t = ground_truth_.timestamps;
-  const size_t before = static_cast<size_t>(std::count_if(t.begin(), t.end(), [&](double x) { return x < t0; }));
-  const size_t after = static_cast<size_t>(std::count_if(t.begin(), t.end(), [&](double x) { return x > t1; }));
+  const auto& t = ground_truth_.timestamps;  // increasing (the pose readers check it)
+  const auto before = static_cast<size_t>(std::lower_bound(t.begin(), t.end(), t0) - t.begin());
+  const auto after = static_cast<size_t>(t.end() - std::upper_bound(t.begin(), t.end(), t1));
   ground_truth_ = ground_truth_.within(t0, t1);
   return {before, after};
 }

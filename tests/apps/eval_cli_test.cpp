@@ -223,23 +223,36 @@ TEST(EvalCli, PerPoseErrorsAfterTheAlignment) {
     }
 }
 
+// A TUM RGB-D folder of 10 frames at 30 Hz from t0 (rgb/, depth/, rgb.txt, depth.txt, no ground
+// truth); returns the frames' timestamps as the index files write them.
+std::vector<std::string> write_tum_frames(const fs::path& tum, double t0) {
+  std::string rgb, depth;
+  std::vector<std::string> times;
+  for (int i = 0; i < 10; ++i) {
+    const std::string n = std::to_string(i), t = std::to_string(t0 + i / 30.0);
+    write_image(tum / "rgb" / (n + ".png"), i);
+    write_depth(tum / "depth" / (n + ".png"), 5000);
+    rgb += t + " rgb/" + n + ".png\n";
+    depth += t + " depth/" + n + ".png\n";
+    times.push_back(t);
+  }
+  write_text(tum / "rgb.txt", rgb);
+  write_text(tum / "depth.txt", depth);
+  return times;
+}
+
 // --first-frame / --frames with a dataset as --gt: the ground truth of the stretch alone, so an
 // estimate of that stretch is fully tracked; with a pose file as --gt they are refused.
 TEST(EvalCli, AStretchOfADatasetIsScoredOnItsOwnFrames) {
   const fs::path dir = scratch_dir();
   // TUM RGB-D: 10 frames at 30 Hz with ground truth at x = i; the estimate has frames 5-9, exact.
-  std::string rgb, depth, gt, est;
+  const std::vector<std::string> times = write_tum_frames(dir / "tum", 1.0);
+  std::string gt, est;
   for (int i = 0; i < 10; ++i) {
-    const std::string n = std::to_string(i), t = std::to_string(1.0 + i / 30.0);
-    write_image(dir / "tum" / "rgb" / (n + ".png"), i);
-    write_depth(dir / "tum" / "depth" / (n + ".png"), 5000);
-    rgb += t + " rgb/" + n + ".png\n";
-    depth += t + " depth/" + n + ".png\n";
+    const std::string n = std::to_string(i), &t = times[static_cast<size_t>(i)];
     gt += t + " " + n + " 0 0 0 0 0 1\n";
     if (i >= 5) est += t + " " + n + " 0 0 0 0 0 1\n";
   }
-  write_text(dir / "tum" / "rgb.txt", rgb);
-  write_text(dir / "tum" / "depth.txt", depth);
   write_text(dir / "tum" / "groundtruth.txt", gt);
   write_text(dir / "est.txt", est);
   const auto eval = [&](const std::string& extra) {
@@ -269,19 +282,14 @@ TEST(EvalCli, GroundTruthRecordedBeyondTheFramesIsNotUntrackedTime) {
   const fs::path dir = scratch_dir();
   // TUM RGB-D as recorded: the motion capture (100 Hz) runs from 1 s before the first of 10 frames
   // (30 Hz) to 1 s after the last; the estimate has every frame, exact.
-  std::string rgb, depth, gt, est, est_late;
+  const std::vector<std::string> times = write_tum_frames(dir / "tum", 2.0);
+  std::string gt, est, est_late;
   for (int i = 0; i < 10; ++i) {
-    const std::string n = std::to_string(i), t = std::to_string(2.0 + i / 30.0);
-    write_image(dir / "tum" / "rgb" / (n + ".png"), i);
-    write_depth(dir / "tum" / "depth" / (n + ".png"), 5000);
-    rgb += t + " rgb/" + n + ".png\n";
-    depth += t + " depth/" + n + ".png\n";
-    est += t + " " + std::to_string(0.1 * (2.0 + i / 30.0)) + " 0 0 0 0 0 1\n";
-    if (i >= 5) est_late += t + " " + std::to_string(0.1 * (2.0 + i / 30.0)) + " 0 0 0 0 0 1\n";
+    const std::string line = times[static_cast<size_t>(i)] + " " + std::to_string(0.1 * (2.0 + i / 30.0)) + " 0 0 0 0 0 1\n";
+    est += line;
+    if (i >= 5) est_late += line;
   }
   for (int k = 100; k <= 330; ++k) gt += std::to_string(k / 100.0) + " " + std::to_string(0.1 * k / 100.0) + " 0 0 0 0 0 1\n";
-  write_text(dir / "tum" / "rgb.txt", rgb);
-  write_text(dir / "tum" / "depth.txt", depth);
   write_text(dir / "tum" / "groundtruth.txt", gt);
   write_text(dir / "est.txt", est);
   const fs::path out = dir / "eval.json";
