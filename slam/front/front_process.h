@@ -74,6 +74,7 @@ class FrontProcess {
   const LocalMapperStats& mapper_stats() const { return mapper_.stats(); }
   size_t mapper_queue_length() const { return mapper_.queued(); }
   TrackingState state() const { return tracker_.state(); }
+  const place::KeyframeDatabase& place_database() const { return tracker_.place_database(); }
 
  private:
   struct Record {

@@ -117,15 +117,23 @@ std::vector<std::shared_ptr<KeyFrame>> KeyFrame::best_covisibles(int n) const {
 void KeyFrame::set_bad(const std::shared_ptr<KeyFrame>& new_parent) {
   for (auto& [id, c] : connections_)
     if (auto kf = c.keyframe.lock()) kf->erase_connection(id_);
-  connections_.clear();
-  for (size_t i = 0; i < map_points_.size(); ++i)
-    if (map_points_[i]) {
-      map_points_[i]->erase_observation(id_);
-      map_points_[i].reset();
-    }
+  decltype(connections_)().swap(connections_);
+  for (const auto& mp : map_points_)
+    if (mp) mp->erase_observation(id_);
+  decltype(map_points_)().swap(map_points_);
   parent_ = new_parent;
   if (new_parent) T_cp_ = T_cw_ * new_parent->pose_wc();
   bad_ = true;
+  // Only the pose relative to the parent is used from here on (frames referring to this keyframe keep
+  // it alive for the trajectory): its point slots, features and words go, so that memory follows the
+  // keyframes kept, not every keyframe ever made (a camera going back and forth makes and culls them
+  // without end).
+  auto husk = std::make_shared<FrameFeatures>();
+  husk->pyramid = features_->pyramid;
+  husk->bf = features_->bf;
+  features_ = std::move(husk);
+  place::BowVector().swap(bow);
+  place::FeatureVector().swap(feature_vector);
 }
 
 double median_scene_depth(const KeyFrame& kf) {

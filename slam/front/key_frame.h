@@ -61,7 +61,8 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   void set_parent(const std::shared_ptr<KeyFrame>& p) { parent_ = p; }
 
   // Removal: the keyframe leaves the covisibility graph and its points; its pose is then kept as
-  // T_cp relative to `parent` so that frames referring to it still get a pose.
+  // T_cp relative to `parent` so that frames referring to it still get a pose. Its point slots,
+  // features (then empty: size() is 0) and words are released.
   bool bad() const { return bad_; }
   void set_bad(const std::shared_ptr<KeyFrame>& new_parent);
   const SE3& pose_relative_to_parent() const { return T_cp_; }

@@ -1,5 +1,7 @@
 #include "slam/front/submap.h"
 
+#include <utility>
+
 namespace wardmap::slam {
 
 Submap::Submap(int id, std::shared_ptr<IdSource> ids) : id_(id), ids_(std::move(ids)) {}
@@ -33,13 +35,17 @@ void Submap::erase_keyframe(const std::shared_ptr<KeyFrame>& kf) {
   const std::vector<std::shared_ptr<MapPoint>> seen = kf->map_points();
   kf->set_bad(parent);
   keyframes_.erase(kf->id());
+  culled_.push_back(kf->id());
   purge_bad_points(seen);  // the points this keyframe was the last to observe
 }
+
+std::vector<KeyFrameId> Submap::take_culled() { return std::exchange(culled_, {}); }
 
 void Submap::clear() {
   for (auto& [id, mp] : map_points_) mp->set_bad();
   map_points_.clear();
   keyframes_.clear();
+  culled_.clear();
   origin_.reset();
 }
 

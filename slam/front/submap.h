@@ -32,6 +32,9 @@ class Submap {
   void erase_map_point(const std::shared_ptr<MapPoint>& mp);
   // Culls a keyframe: it leaves the graph and its points; its pose is kept relative to its parent.
   void erase_keyframe(const std::shared_ptr<KeyFrame>& kf);
+  // The ids of the keyframes culled since the last call (the tracker takes them out of its place
+  // database, as ORB-SLAM's KeyFrame::SetBadFlag erases a keyframe from its KeyFrameDatabase).
+  std::vector<KeyFrameId> take_culled();
   // Drops every keyframe and point (a failed initialisation starts over in the same submap).
   void clear();
   // Forgets points that became bad elsewhere (no observations left, replaced): all of them (a scan
@@ -57,6 +60,7 @@ class Submap {
   std::map<KeyFrameId, std::shared_ptr<KeyFrame>> keyframes_;
   std::unordered_map<MapPointId, std::shared_ptr<MapPoint>> map_points_;
   std::shared_ptr<KeyFrame> origin_;
+  std::vector<KeyFrameId> culled_;
   mutable std::mutex mutex_;
 };
 

@@ -541,6 +541,7 @@ void Tracker::adopt_keyframe(Frame& frame, const std::shared_ptr<KeyFrame>& kf) 
 }
 
 void Tracker::index_new_keyframes(bool compute_missing) {
+  for (const KeyFrameId id : submap_->take_culled()) place_database_.erase(id);
   size_t waiting = 0;
   for (auto& kf : unindexed_) {
     if (!vocabulary_ || kf->bad()) continue;

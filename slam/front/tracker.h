@@ -57,6 +57,8 @@ class Tracker {
   TrackingState state() const { return state_; }
   // Consecutive frames lost since the last tracked one.
   int frames_lost() const { return frames_lost_; }
+  // The keyframes relocalisation can find (those of the current submap, culled ones taken out).
+  const place::KeyframeDatabase& place_database() const { return place_database_; }
 
  private:
   bool initialise(Frame& frame);
@@ -110,8 +112,9 @@ class Tracker {
   std::shared_ptr<const place::Vocabulary> vocabulary_;
   place::KeyframeDatabase place_database_;
   std::vector<std::shared_ptr<KeyFrame>> unindexed_;  // keyframes not yet in place_database_
-  // Adds the new keyframes whose words the mapper has computed to the place database; with
-  // compute_missing (relocalisation needs them all) computes the others' too.
+  // Takes the keyframes culled since the last call out of the place database, then adds the new
+  // keyframes whose words the mapper has computed; with compute_missing (relocalisation needs them
+  // all) computes the others' too.
   void index_new_keyframes(bool compute_missing);
   std::vector<TrackingOutcome::Backfilled> backfill_initialisation_window(const std::shared_ptr<KeyFrame>& kf1,
                                                                          const std::shared_ptr<KeyFrame>& kf2);

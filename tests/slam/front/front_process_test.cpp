@@ -136,6 +136,17 @@ TEST(FrontProcess, RelocalisesInTheSameSubmapAfterBlindFrames) {
   EXPECT_EQ(relocalised, 1);
   EXPECT_EQ(tracked, 20);
   EXPECT_EQ(front.submaps().size(), 1u);
+
+  // Culled keyframes are no relocalisation candidates (ORB-SLAM's SetBadFlag erases them from its
+  // keyframe database): after one more lost frame (relocalisation indexes every keyframe, the
+  // mapper gets no keyframe), the place database holds exactly the submap's keyframes.
+  const Submap& map = front.submap();
+  const KeyFrameId made = map.keyframes().rbegin()->first + 1;  // one submap: ids 0 .. made - 1
+  ASSERT_GT(made, map.num_keyframes()) << "no keyframe was culled: the check below shows nothing";
+  blind.timestamp = t += 1.0 / 30;
+  EXPECT_FALSE(front.process(blind).tracked);
+  EXPECT_EQ(front.place_database().size(), map.num_keyframes());
+  for (const auto& [id, kf] : map.keyframes()) EXPECT_TRUE(front.place_database().contains(id)) << "keyframe " << id;
 }
 
 namespace {

@@ -71,11 +71,26 @@ TEST(Submap, ObservationsBuildTheCovisibilityGraph) {
 
   // Culling kf1 keeps its pose through the parent (kf0) and removes its observations.
   const SE3 pose1 = kfs[1]->pose_cw();
+  kfs[1]->bow = {{3, 0.5}, {7, 0.5}};
+  kfs[1]->feature_vector[1] = {0, 1};
+  EXPECT_TRUE(map.take_culled().empty());
   map.erase_keyframe(kfs[1]);
   EXPECT_TRUE(kfs[1]->bad());
   EXPECT_EQ(map.num_keyframes(), 2u);
   EXPECT_EQ(kfs[0]->weight(kfs[1]->id()), 0);
   EXPECT_LT((resolved_pose_cw(kfs[1]).matrix() - pose1.matrix()).norm(), 1e-12);
+  // Its features and words are released (frames referring to it keep only its pose alive); the
+  // frame it was made from still has its own.
+  EXPECT_EQ(kfs[1]->size(), 0u);
+  EXPECT_TRUE(kfs[1]->map_points().empty());
+  EXPECT_TRUE(kfs[1]->bow.empty());
+  EXPECT_TRUE(kfs[1]->feature_vector.empty());
+  EXPECT_EQ(kfs[1]->features().pyramid, features()->pyramid);
+  EXPECT_GT(features()->size(), 0u);
+  EXPECT_EQ(kfs[0]->size(), features()->size());
+  // The culled id is handed out once, for the tracker's place database.
+  EXPECT_EQ(map.take_culled(), std::vector<KeyFrameId>{kfs[1]->id()});
+  EXPECT_TRUE(map.take_culled().empty());
   // Moving the parent moves the culled keyframe's resolved pose with it.
   kfs[0]->set_pose_cw(SE3(Eigen::Quaterniond::Identity(), Eigen::Vector3d(0, 0, 1)));
   EXPECT_NEAR(resolved_pose_cw(kfs[1]).translation().z(), 1.0, 1e-12);
