@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include <sys/resource.h>
+#include <malloc.h>
 
 #include <algorithm>
 #include <opencv2/imgproc.hpp>
@@ -63,8 +64,19 @@ BENCHMARK(BM_OrbExtract640x480)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 // The benchmark's first argument picks tracking.pose_solver: 0 = ceres (the default), 1 = lm; the
 // second the optical flow (tracking.flow_extend / _mono): 0 = the settings', 1 = on for every frame (no
 // time budget), 2 = off, 3 = on under the settings' time budget (tracking.flow_budget_ms / _mono).
+// Heap in use now (MB): glibc's allocated bytes over every arena plus its mmapped blocks. Unlike the
+// resident size it does not keep what earlier benchmarks of this process freed.
+double heap_mb() {
+  const struct mallinfo2 m = mallinfo2();
+  return static_cast<double>(m.uordblks + m.hblkhd) / (1024.0 * 1024.0);
+}
+
+// `passes` > 1 plays the frames forth and back (0 .. n-1, n-2 .. 0, 1 .. n-1, ...) at the sequence's
+// frame rate, as a robot going up and down one corridor: the map is revisited, keyframes are made
+// and culled, and the memory the map holds at the end (map_mb: the heap in use after the run, the
+// front-process still alive, less before it) should follow the keyframes kept, not those made.
 void run_front(benchmark::State& state, const char* sequence, const char* settings_name, bool mono, size_t max_frames,
-               double target_ms) {
+               double target_ms, int passes = 1) {
   const auto root = data_dir() / sequence;
   if (!std::filesystem::exists(root)) return state.SkipWithError("shared sequence not found");
   const slam::io::Settings settings = shipped_settings(settings_name);
@@ -78,16 +90,29 @@ void run_front(benchmark::State& state, const char* sequence, const char* settin
   ro.depth_factor = settings.camera.depth_map_factor;
   auto reader = slam::io::open_sequence(root, ro);
   const size_t n = std::min<size_t>(max_frames, reader->size());
+  if (passes > 1 && n < 2) return state.SkipWithError("too few frames to play back and forth");
+  const size_t frames = passes > 1 ? static_cast<size_t>(passes) * (n - 1) + 1 : n;
+  const double period = n > 1 ? (reader->timestamp(n - 1) - reader->timestamp(0)) / static_cast<double>(n - 1) : 0;
+  const auto frame_at = [&](size_t k) {
+    if (passes <= 1) return reader->read(k);
+    const size_t cycle = 2 * (n - 1), j = k % cycle;
+    slam::io::Frame f = reader->read(j < n ? j : cycle - j);
+    f.index = k;
+    f.timestamp = reader->timestamp(0) + static_cast<double>(k) * period;
+    return f;
+  };
   auto vocabulary = std::make_shared<const slam::place::Vocabulary>(
       slam::place::Vocabulary::load(std::filesystem::path(WARDMAP_PROJECT_DIR) / "data/vocabulary/orb-k10l4.bin"));
   std::vector<double> seconds, extract_seconds;
   double tracked = 0, keyframes = 0, ba_seconds = 0, mapped = 0, waited = 0, flowed = 0;
-  size_t max_queue = 0;
+  size_t max_queue = 0, kept = 0;
+  double map_mb = 0;
   for (auto _ : state) {
+    const double before_mb = heap_mb();
     slam::FrontProcess front(options, settings.camera.camera);
     front.set_vocabulary(vocabulary);
-    for (size_t i = 0; i < n; ++i) {
-      const slam::FrameResult r = front.process(reader->read(i));  // r.seconds excludes reading
+    for (size_t i = 0; i < frames; ++i) {
+      const slam::FrameResult r = front.process(frame_at(i));  // r.seconds excludes reading
       seconds.push_back(r.seconds);  // without waiting for the mapper (r.wait_seconds)
       extract_seconds.push_back(r.extract_seconds);
       waited += r.wait_seconds;
@@ -99,6 +124,8 @@ void run_front(benchmark::State& state, const char* sequence, const char* settin
     front.finish();
     ba_seconds += front.mapper_stats().t_ba;
     mapped += front.mapper_stats().keyframes;
+    kept += front.submap().num_keyframes();
+    map_mb += heap_mb() - before_mb;
   }
   auto pct = [](std::vector<double> v, double p) {
     std::sort(v.begin(), v.end());
@@ -115,6 +142,9 @@ void run_front(benchmark::State& state, const char* sequence, const char* settin
   state.counters["tracked_pct"] = 100.0 * tracked / static_cast<double>(seconds.size());
   state.counters["flow_pct"] = 100.0 * flowed / static_cast<double>(seconds.size());  // frames with the flow on
   state.counters["keyframe_pct"] = 100.0 * keyframes / static_cast<double>(seconds.size());
+  state.counters["keyframes_made"] = keyframes / static_cast<double>(state.iterations());
+  state.counters["keyframes_kept"] = static_cast<double>(kept) / static_cast<double>(state.iterations());
+  state.counters["map_mb"] = map_mb / static_cast<double>(state.iterations());
   state.counters["ba_ms_per_kf"] = mapped > 0 ? 1e3 * ba_seconds / mapped : 0.0;
   state.counters["max_kf_queue"] = static_cast<double>(max_queue);
   // Time the tracker waited for a mapper still busy mapping.max_lag_frames after a keyframe, per
@@ -133,7 +163,16 @@ void BM_FrontKittiMono(benchmark::State& state) {
 }
 BENCHMARK(BM_FrontKitchenRgbd)->ArgNames({"lm", "flow"})->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({0, 3})->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_FrontKitchenMono)->ArgNames({"lm", "flow"})->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({0, 3})->Unit(benchmark::kMillisecond)->Iterations(1);
+// Three passes forth and back: the memory a longer run holds (map_mb against keyframes_kept).
+void BM_FrontKitchenRgbdBackAndForth(benchmark::State& state) {
+  run_front(state, kKitchen, "7Scenes.yaml", false, 600, 15.0, 3);
+}
+void BM_FrontKittiMonoBackAndForth(benchmark::State& state) {
+  run_front(state, "kitti-odometry-03", "KITTI03.yaml", true, 400, 15.0, 3);
+}
 BENCHMARK(BM_FrontKittiMono)->ArgNames({"lm", "flow"})->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({0, 3})->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_FrontKitchenRgbdBackAndForth)->ArgNames({"lm", "flow"})->Args({0, 0})->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_FrontKittiMonoBackAndForth)->ArgNames({"lm", "flow"})->Args({0, 0})->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
 }  // namespace wardmap::bench
