@@ -1,6 +1,6 @@
 // Front-process speed on the shared sequences: ORB extraction per frame (7-Scenes 640x480, KITTI
 // 03), and per-frame tracking with the mapper on its own thread (7-Scenes RGB-D and monocular,
-// KITTI 03 monocular).
+// KITTI 03 monocular); and the memory the map holds over three passes forth and back.
 #include <benchmark/benchmark.h>
 
 #include <sys/resource.h>
@@ -56,14 +56,6 @@ void BM_OrbExtractKitti(benchmark::State& state) { orb_extract(state, "kitti-odo
 BENCHMARK(BM_OrbExtractKitti)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_OrbExtract640x480)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
-// One pass over a shared sequence with local mapping on its own thread (as `wardmap run` does):
-// per-frame tracking time (extraction + tracking, median / p95 / max), the ratio of the median to
-// the issue's target, the median extraction time alone, keyframe rate, local BA time per keyframe,
-// the largest keyframe queue seen and the process's peak resident memory (frames are read as they
-// go, so it is the SLAM's).
-// The benchmark's first argument picks tracking.pose_solver: 0 = ceres (the default), 1 = lm; the
-// second the optical flow (tracking.flow_extend / _mono): 0 = the settings', 1 = on for every frame (no
-// time budget), 2 = off, 3 = on under the settings' time budget (tracking.flow_budget_ms / _mono).
 // Heap in use now (MB): glibc's allocated bytes over every arena plus its mmapped blocks. Unlike the
 // resident size it does not keep what earlier benchmarks of this process freed.
 double heap_mb() {
@@ -71,6 +63,14 @@ double heap_mb() {
   return static_cast<double>(m.uordblks + m.hblkhd) / (1024.0 * 1024.0);
 }
 
+// One pass over a shared sequence with local mapping on its own thread (as `wardmap run` does):
+// per-frame tracking time (extraction + tracking, median / p95 / max), the ratio of the median to
+// the issue's target, the median extraction time alone, keyframe rate, local BA time per keyframe,
+// the largest keyframe queue seen, the keyframes made and kept, the heap the map holds at the end
+// and the process's peak resident memory (frames are read as they go, so it is the SLAM's).
+// The benchmark's first argument picks tracking.pose_solver: 0 = ceres (the default), 1 = lm; the
+// second the optical flow (tracking.flow_extend / _mono): 0 = the settings', 1 = on for every frame (no
+// time budget), 2 = off, 3 = on under the settings' time budget (tracking.flow_budget_ms / _mono).
 // `passes` > 1 plays the frames forth and back (0 .. n-1, n-2 .. 0, 1 .. n-1, ...) at the sequence's
 // frame rate, as a robot going up and down one corridor: the map is revisited, keyframes are made
 // and culled, and the memory the map holds at the end (map_mb: the heap in use after the run, the
@@ -161,8 +161,6 @@ void BM_FrontKitchenMono(benchmark::State& state) { run_front(state, kKitchen, "
 void BM_FrontKittiMono(benchmark::State& state) {
   run_front(state, "kitti-odometry-03", "KITTI03.yaml", true, 400, 15.0);
 }
-BENCHMARK(BM_FrontKitchenRgbd)->ArgNames({"lm", "flow"})->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({0, 3})->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK(BM_FrontKitchenMono)->ArgNames({"lm", "flow"})->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({0, 3})->Unit(benchmark::kMillisecond)->Iterations(1);
 // Three passes forth and back: the memory a longer run holds (map_mb against keyframes_kept).
 void BM_FrontKitchenRgbdBackAndForth(benchmark::State& state) {
   run_front(state, kKitchen, "7Scenes.yaml", false, 600, 15.0, 3);
@@ -170,6 +168,8 @@ void BM_FrontKitchenRgbdBackAndForth(benchmark::State& state) {
 void BM_FrontKittiMonoBackAndForth(benchmark::State& state) {
   run_front(state, "kitti-odometry-03", "KITTI03.yaml", true, 400, 15.0, 3);
 }
+BENCHMARK(BM_FrontKitchenRgbd)->ArgNames({"lm", "flow"})->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({0, 3})->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_FrontKitchenMono)->ArgNames({"lm", "flow"})->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({0, 3})->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_FrontKittiMono)->ArgNames({"lm", "flow"})->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({0, 3})->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_FrontKitchenRgbdBackAndForth)->ArgNames({"lm", "flow"})->Args({0, 0})->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_FrontKittiMonoBackAndForth)->ArgNames({"lm", "flow"})->Args({0, 0})->Unit(benchmark::kMillisecond)->Iterations(1);

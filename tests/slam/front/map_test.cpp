@@ -79,8 +79,8 @@ TEST(Submap, ObservationsBuildTheCovisibilityGraph) {
   EXPECT_EQ(map.num_keyframes(), 2u);
   EXPECT_EQ(kfs[0]->weight(kfs[1]->id()), 0);
   EXPECT_LT((resolved_pose_cw(kfs[1]).matrix() - pose1.matrix()).norm(), 1e-12);
-  // Its features and words are released (frames referring to it keep only its pose alive); the
-  // frame it was made from still has its own.
+  // Its point slots, features and words are released (frames referring to it keep only its pose
+  // alive); the frame it was made from still has its features.
   EXPECT_EQ(kfs[1]->size(), 0u);
   EXPECT_TRUE(kfs[1]->map_points().empty());
   EXPECT_TRUE(kfs[1]->bow.empty());
