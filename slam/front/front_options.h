@@ -77,6 +77,9 @@ struct TrackingOptions {
   int init_min_matches = 100;           // tracking.init_min_matches: else the reference frame is replaced
   double init_window = 100.0;           // tracking.init_window (px): initialisation search window
   double init_ratio = 0.9;              // tracking.init_ratio: best / second best distance
+  // Levels either side of a keypoint's own searched when same-level matching finds fewer than
+  // init_min_matches (a camera closing in fast); 0: the same level only, as ORB-SLAM.
+  int init_level_span = 1;              // tracking.init_level_span
   int init_max_frames = 30;             // tracking.init_max_frames: a reference older than this is replaced
   TwoViewOptions two_view;              // tracking.init_*: H / F model selection and triangulation
   // Relocalisation (needs a vocabulary): candidates by bag of words, then PnP RANSAC.

@@ -151,17 +151,21 @@ int OrbMatcher::search_by_knn(const KeyFrame& keyframe, Frame& frame) const {
 }
 
 std::vector<int> OrbMatcher::search_for_initialisation(const FrameFeatures& f1, const FrameFeatures& f2,
-                                                       std::vector<Eigen::Vector2d>& prior, double window,
-                                                       double ratio) const {
+                                                       std::vector<Eigen::Vector2d>& prior, double window, double ratio,
+                                                       int level_span) const {
   std::vector<int> m12(f1.size(), -1), m21(f2.size(), -1), dist21(f2.size(), INT_MAX);
   RotationHistogram hist(o_.histogram_bins);
   for (size_t i = 0; i < f1.size(); ++i) {
     const int level = f1.levels[i];
     if (level > 1) continue;  // coarse levels localise too poorly for the two-view geometry
     Best best;
-    for (int j : f2.grid.in_area(prior[i].x(), prior[i].y(), window, level, level))
-      best.offer(descriptor_distance(f1.descriptor(i), f2.descriptor(static_cast<size_t>(j))), j, 0);
-    if (best.idx < 0 || !descriptor_matches(best.dist, o_.th_low) || best.dist >= ratio * best.dist2) continue;
+    for (int j :
+         f2.grid.in_area(prior[i].x(), prior[i].y(), window, std::max(0, level - level_span), level + level_span))
+      best.offer(descriptor_distance(f1.descriptor(i), f2.descriptor(static_cast<size_t>(j))), j,
+                 f2.levels[static_cast<size_t>(j)]);
+    if (best.idx < 0 || !descriptor_matches(best.dist, o_.th_low)) continue;
+    // One corner is often detected on two adjacent levels: the ratio test compares same-level rivals.
+    if (best.level == best.level2 && best.dist >= ratio * best.dist2) continue;
     const size_t j = static_cast<size_t>(best.idx);
     if (best.dist >= dist21[j]) continue;
     if (m21[j] >= 0) m12[static_cast<size_t>(m21[j])] = -1;  // a closer f1 keypoint takes it

@@ -41,11 +41,13 @@ class OrbMatcher {
   int search_by_projection(Frame& current, const std::vector<ProjectionCandidate>& candidates, double radius) const;
   // Brute-force 2-NN between the keyframe's points and all frame features (ratio + rotation check).
   int search_by_knn(const KeyFrame& keyframe, Frame& frame) const;
-  // Monocular initialisation: each level-0/1 keypoint of f1 matched to f2's keypoints of its level within
-  // `window` px of `prior[i]` (where it was found last time; f1's position at first), distance <=
-  // th_low, ratio `ratio`, rotation check. Returns f2's index per f1 keypoint (-1: none); updates prior.
+  // Monocular initialisation: each level-0/1 keypoint of f1 matched to f2's keypoints within `window` px
+  // of `prior[i]` (where it was found last time; f1's position at first) and `level_span` levels of its
+  // own, distance <= th_low, ratio `ratio` when the two nearest are on one level, rotation check.
+  // Returns f2's index per f1 keypoint (-1: none); updates prior.
   std::vector<int> search_for_initialisation(const FrameFeatures& f1, const FrameFeatures& f2,
-                                             std::vector<Eigen::Vector2d>& prior, double window, double ratio) const;
+                                             std::vector<Eigen::Vector2d>& prior, double window, double ratio,
+                                             int level_span = 0) const;
   // Pairs (i1, i2) of unmatched keypoints of two keyframes satisfying the epipolar constraint (among
   // the keypoints under the same vocabulary node when both keyframes have a direct index).
   std::vector<std::pair<int, int>> search_for_triangulation(const KeyFrame& kf1, const KeyFrame& kf2) const;

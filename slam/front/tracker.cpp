@@ -136,8 +136,17 @@ bool Tracker::initialise_monocular(Frame& frame) {
     return false;
   }
   const FrameFeatures& f1 = init_reference_->features();
-  const std::vector<int> m12 = matcher_.search_for_initialisation(f1, frame.features(), init_prior_, t.init_window,
-                                                                  t.init_ratio);
+  std::vector<Eigen::Vector2d> prior = init_prior_;
+  std::vector<int> m12 =
+      matcher_.search_for_initialisation(f1, frame.features(), init_prior_, t.init_window, t.init_ratio);
+  if (t.init_level_span > 0 &&
+      std::count_if(m12.begin(), m12.end(), [](int j) { return j >= 0; }) < t.init_min_matches) {
+    // Few keypoints kept their level: the camera may be closing in (or backing off) fast, so each
+    // corner is now found a level up (down). Search the neighbouring levels from the same priors.
+    init_prior_ = std::move(prior);
+    m12 = matcher_.search_for_initialisation(f1, frame.features(), init_prior_, t.init_window, t.init_ratio,
+                                             t.init_level_span);
+  }
   std::vector<Eigen::Vector2d> p1, p2;
   std::vector<int> index1;
   for (size_t i = 0; i < m12.size(); ++i) {
