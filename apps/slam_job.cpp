@@ -113,43 +113,49 @@ json challenges_json(const std::vector<slam::eval::ChallengeRecovery>& rec) {
                    {"submap_before", r.submap_before},
                    {"submap_after", r.submap_after},
                    {"new_submap", r.new_submap()},
-                   {"localised_again_after_seconds", r.resumed_after ? json(*r.resumed_after) : json(nullptr)}});
+                   {"localised_again_after_seconds", r.resumed_after ? json(*r.resumed_after) : json(nullptr)},
+                   {"held_after_seconds", r.held_after ? json(*r.held_after) : json(nullptr)}});
   return out;
 }
 
 std::string challenges_markdown(const std::vector<slam::eval::ChallengeRecovery>& rec) {
-  std::string md =
+  std::string md = fmt::format(
       "\n## Challenge segments (challenges.txt)\n\n"
-      "Frames not localised inside each segment (lost or initialising), and the first frame localised at or "
-      "after its end (tracked, relocalised, or backfilled by a monocular initialisation).\n\n"
-      "| segment | kind | frames inside | not localised inside | localised again after its end | submap before -> "
-      "after |\n"
-      "|---|---|---|---|---|---|\n";
+      "Frames not localised inside each segment (lost or initialising), the first frame localised at or "
+      "after its end (tracked, relocalised, or backfilled by a monocular initialisation), and the first from "
+      "which tracking holds (it and the next {} frames localised, or all the frames left).\n\n"
+      "| segment | kind | frames inside | not localised inside | localised again after its end | tracking held "
+      "from | submap before -> after |\n"
+      "|---|---|---|---|---|---|---|\n",
+      slam::eval::kHoldFrames - 1);
+  auto after = [](const std::optional<double>& t, bool covered) {
+    return t ? fmt::format("{:.3f} s", *t) : covered ? std::string("never") : std::string("(the run ends first)");
+  };
   for (const auto& r : rec) {
-    const std::string again = r.resumed_after ? fmt::format("{:.3f} s", *r.resumed_after)
-                              : r.covered     ? std::string("never")
-                                              : std::string("(the run ends first)");
+    const std::string again = after(r.resumed_after, r.covered);
+    const std::string held = after(r.held_after, r.covered);
     const std::string submaps =
         r.resumed_after ? fmt::format("{} -> {}{}", r.submap_before, r.submap_after, r.new_submap() ? " (new)" : "")
                         : fmt::format("{} -> -", r.submap_before);
-    md += fmt::format("| {:.3f}-{:.3f} s | {} | {} | {} | {} | {} |\n", r.segment.begin, r.segment.end, r.segment.kind,
-                      r.frames_inside, r.lost_inside, again, submaps);
+    md += fmt::format("| {:.3f}-{:.3f} s | {} | {} | {} | {} | {} | {} |\n", r.segment.begin, r.segment.end,
+                      r.segment.kind, r.frames_inside, r.lost_inside, again, held, submaps);
   }
   return md;
 }
 
 std::string challenges_summary(const std::vector<slam::eval::ChallengeRecovery>& rec) {
-  int lost = 0, renewed = 0, back = 0;
-  double slowest = 0;
+  int lost = 0, renewed = 0, back = 0, held = 0;
+  double slowest = 0, slowest_held = 0;
   for (const auto& r : rec) {
     lost += r.lost_inside > 0;
     renewed += r.new_submap();
     if (r.resumed_after) ++back, slowest = std::max(slowest, *r.resumed_after);
+    if (r.held_after) ++held, slowest_held = std::max(slowest_held, *r.held_after);
   }
   return fmt::format(
       "challenge segments {}: lost inside {}, localised again after {} of them (at most {:.2f} s after the end), "
-      "{} in a new submap\n",
-      rec.size(), lost, back, slowest, renewed);
+      "{} in a new submap; tracking held after {} of them (at most {:.2f} s after the end)\n",
+      rec.size(), lost, back, slowest, renewed, held, slowest_held);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "slam/eval/challenge_recovery.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "slam/core/errors.h"
@@ -31,7 +32,10 @@ std::vector<ChallengeSegment> read_challenges(const std::filesystem::path& file)
 }
 
 std::vector<ChallengeRecovery> challenge_recovery(const std::vector<FrameState>& frames,
-                                                  const std::vector<ChallengeSegment>& segments) {
+                                                  const std::vector<ChallengeSegment>& segments, int hold_frames) {
+  // run[i]: how many frames from i on are localised in a row.
+  std::vector<int> run(frames.size() + 1, 0);
+  for (size_t i = frames.size(); i-- > 0;) run[i] = localised(frames[i].status) ? run[i + 1] + 1 : 0;
   std::vector<ChallengeRecovery> out;
   if (frames.empty()) return out;
   for (const ChallengeSegment& s : segments) {
@@ -39,6 +43,14 @@ std::vector<ChallengeRecovery> challenge_recovery(const std::vector<FrameState>&
     ChallengeRecovery r;
     r.segment = s;
     r.covered = frames.back().timestamp >= s.end;
+    for (size_t i = 0; i < frames.size(); ++i) {
+      if (frames[i].timestamp < s.end) continue;
+      const int left = static_cast<int>(frames.size() - i);
+      if (run[i] >= std::min(hold_frames, left)) {
+        r.held_after = frames[i].timestamp - s.end;
+        break;
+      }
+    }
     for (const FrameState& f : frames) {
       if (f.timestamp < s.begin) {
         if (localised(f.status)) r.submap_before = f.submap;

@@ -29,6 +29,9 @@ struct FrameState {
   int submap = -1;
 };
 
+// Frames tracking must hold for a segment to count as recovered from (held_after): 1/3 s at 30 Hz.
+inline constexpr int kHoldFrames = 10;
+
 struct ChallengeRecovery {
   ChallengeSegment segment;
   bool covered = false;    // the run's frames reach the segment's end
@@ -38,12 +41,17 @@ struct ChallengeRecovery {
   // The first localised frame at or after the segment's end: its time after the end and its submap.
   std::optional<double> resumed_after;
   int submap_after = -1;
+  // The first frame at or after the end from which tracking holds: it and the next hold_frames - 1
+  // frames (or all the frames left, when fewer) are localised. A new submap that localises a frame or
+  // two and is lost again counts for resumed_after, not for this.
+  std::optional<double> held_after;
   bool new_submap() const { return resumed_after && submap_after != submap_before; }
 };
 
 // One entry per segment that overlaps the frames' time span, in the segments' order. `frames` in
 // time order.
 std::vector<ChallengeRecovery> challenge_recovery(const std::vector<FrameState>& frames,
-                                                  const std::vector<ChallengeSegment>& segments);
+                                                  const std::vector<ChallengeSegment>& segments,
+                                                  int hold_frames = kHoldFrames);
 
 }  // namespace wardmap::slam::eval

@@ -81,6 +81,30 @@ TEST(ChallengeRecovery, TrackedThroughASegment) {
   EXPECT_FALSE(r[0].new_submap());
 }
 
+TEST(ChallengeRecovery, HeldCountsOnlyTrackingThatLasts) {
+  // Segment 0.05-0.25. Frame 3 is localised in a new submap that is lost at once (frames 4-5); a
+  // second submap holds from frame 6.
+  const auto frames = frames_of("TLLTLLTTTTTT", {0, 0, 0, 1, 1, 1, 2, 2, 2, 2, 2, 2});
+  auto r = challenge_recovery(frames, {{0.05, 0.25, "fast-turn"}}, /*hold_frames=*/4);
+  ASSERT_EQ(r.size(), 1u);
+  ASSERT_TRUE(r[0].resumed_after);
+  EXPECT_NEAR(*r[0].resumed_after, 0.3 - 0.25, 1e-9);  // frame 3
+  EXPECT_EQ(r[0].submap_after, 1);
+  ASSERT_TRUE(r[0].held_after);
+  EXPECT_NEAR(*r[0].held_after, 0.6 - 0.25, 1e-9);  // frame 6: frames 6-9 localised
+  // Fewer frames left than hold_frames: all of them localised is enough.
+  r = challenge_recovery(frames, {{0.05, 0.25, "fast-turn"}}, /*hold_frames=*/10);
+  ASSERT_TRUE(r[0].held_after);
+  EXPECT_NEAR(*r[0].held_after, 0.6 - 0.25, 1e-9);
+  // Lost again at the very end: never held.
+  r = challenge_recovery(frames_of("TLLTTTL", {0, 0, 0, 1, 1, 1, 1}), {{0.05, 0.25, "blur"}}, 3);
+  ASSERT_TRUE(r[0].resumed_after);
+  EXPECT_NEAR(*r[0].held_after, 0.05, 1e-9);  // frames 3-5
+  r = challenge_recovery(frames_of("TLLTTL", {0, 0, 0, 1, 1, 1}), {{0.05, 0.25, "blur"}}, 3);
+  EXPECT_TRUE(r[0].resumed_after);
+  EXPECT_FALSE(r[0].held_after);
+}
+
 void write(const std::filesystem::path& file, const std::string& text) { std::ofstream(file) << text; }
 
 TEST(ReadChallenges, ReadsTheSynthWritersFormat) {
