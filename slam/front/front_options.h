@@ -70,6 +70,9 @@ struct TrackingOptions {
   int keyframe_close_untracked = 70;   // tracking.keyframe_close_untracked (ORB-SLAM: 70)
   int min_depth_points = 100;          // tracking.min_depth_points: new close points per keyframe
   int lost_frames_to_reset = 15;       // tracking.lost_frames_to_reset: lost this long, start a new submap
+  // A submap of at most this many keyframes is not worth relocalising into: lost there, a new one starts
+  // at once (ORB-SLAM2 resets a map of 5 keyframes or fewer, ORB-SLAM3 of 10).
+  int young_submap_keyframes = 5;       // tracking.young_submap_keyframes
   // Monocular (ORB-SLAM's values where the sensor changes them).
   double motion_radius_mono = 15.0;     // tracking.motion_radius_mono (px): no depth to bound the search
   double keyframe_ref_ratio_mono = 0.9; // tracking.keyframe_ref_ratio_mono

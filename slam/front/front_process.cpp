@@ -117,9 +117,9 @@ FrameResult FrontProcess::process(const io::Frame& in) {
         records_.push_back({in.timestamp, submap_->id(), t.reference, frame.pose_cw() * t.reference->pose_wc()});
       }
     } else if (t.state == TrackingState::kLost) {
-      // A monocular map this small is not worth relocalising into (ORB-SLAM resets it): start over.
+      // A map this small is not worth relocalising into (ORB-SLAM resets it): start over.
       start_submap = tracker_.frames_lost() >= options_.tracking.lost_frames_to_reset ||
-                     (options_.monocular && submap_->num_keyframes() <= 5);
+                     submap_->num_keyframes() <= static_cast<size_t>(options_.tracking.young_submap_keyframes);
     }
   }
   if (start_submap) {

@@ -1,8 +1,9 @@
 // The realtime front-process as one object: feed it frames, get each frame's status and pose, and the
 // trajectory of the tracked frames at any time (poses are kept relative to their reference keyframe,
 // so bundle-adjustment corrections reach them). The entry point for `wardmap run`.
-// When tracking stays lost for tracking.lost_frames_to_reset frames (no relocalisation yet), a new
-// submap is started, seeded at the last tracked pose; the old submaps are kept for a later merge.
+// When tracking stays lost for tracking.lost_frames_to_reset frames (no relocalisation yet), or is lost
+// in a submap of at most tracking.young_submap_keyframes keyframes, a new submap is started, seeded at
+// the last tracked pose; the old submaps are kept for a later merge.
 #pragma once
 
 #include <chrono>

@@ -149,6 +149,49 @@ TEST(FrontProcess, RelocalisesInTheSameSubmapAfterBlindFrames) {
   for (const auto& [id, kf] : map.keyframes()) EXPECT_TRUE(front.place_database().contains(id)) << "keyframe " << id;
 }
 
+// A submap with many keyframes waits tracking.lost_frames_to_reset lost frames for a relocalisation;
+// one of at most tracking.young_submap_keyframes keyframes is left at its first lost frame (in RGB-D
+// too: a fresh submap that is lost again would otherwise hold recovery up for 0.5 s).
+TEST(FrontProcess, StartsOverAtOnceWhenAYoungSubmapIsLost) {
+  const fs::path bin = wardmap_binary();
+  if (!fs::exists(bin)) GTEST_SKIP() << "wardmap executable not built: " << bin;
+  const fs::path seq = test::scratch_dir() / "aisle_young";
+  ASSERT_TRUE(render(seq, "--scenario aisle_straight --variant slow --seed 3 --frames 45"));
+  const io::Settings settings = io::load_settings(seq / "settings.yaml");
+  io::ReaderOptions ro;
+  ro.depth_factor = settings.camera.depth_map_factor;
+  auto reader = io::open_sequence(seq, ro);
+  for (const int young : {5, 0}) {
+    FrontOptions options = load_front_options(settings);
+    options.tracking.young_submap_keyframes = young;
+    FrontProcess front(options, settings.camera.camera);
+    for (size_t i = 0; i < 40; ++i) ASSERT_TRUE(front.process(reader->read(i)).tracked) << "frame " << i;
+    ASSERT_GT(front.submap().num_keyframes(), 5u);
+    io::Frame blind = reader->read(39);
+    blind.image.setTo(0);
+    blind.depth.setTo(0);
+    double t = blind.timestamp;
+    auto lost_frames_until_new_submap = [&]() {
+      for (int k = 1; k <= 30; ++k) {
+        blind.timestamp = t += 1.0 / 30;
+        const FrameResult r = front.process(blind);
+        EXPECT_FALSE(r.tracked);
+        if (r.new_submap) return k;
+      }
+      return -1;
+    };
+    EXPECT_EQ(lost_frames_until_new_submap(), options.tracking.lost_frames_to_reset) << "young " << young;
+    io::Frame f = reader->read(40);
+    f.timestamp = t += 1.0 / 30;
+    ASSERT_TRUE(front.process(f).tracked);  // RGB-D initialises from one frame
+    EXPECT_EQ(front.submaps().size(), 2u);
+    EXPECT_EQ(front.submap().num_keyframes(), 1u);
+    EXPECT_EQ(lost_frames_until_new_submap(), young > 0 ? 1 : options.tracking.lost_frames_to_reset)
+        << "young " << young;
+    EXPECT_EQ(front.submaps().size(), 3u);
+  }
+}
+
 namespace {
 
 // Keypoints that the optical flow placed in the live keyframes (after the detected ones), observing a point.
