@@ -71,20 +71,34 @@ TEST(FrontProcess, TracksASyntheticRgbdAisle) {
 
   // Blind frames (black, no depth): lost, then after tracking.lost_frames_to_reset a new submap; the
   // trajectory stays that of the largest submap.
+  ASSERT_GT(front.submap().num_keyframes(), static_cast<size_t>(options.tracking.young_submap_keyframes));
   io::Frame blind = reader->read(89);
   blind.image.setTo(0);
   blind.depth.setTo(0);
-  bool new_submap = false;
   for (int k = 1; k <= options.tracking.lost_frames_to_reset; ++k) {
     blind.index = 89 + static_cast<size_t>(k);
     blind.timestamp += 1.0 / 30;
     const FrameResult r = front.process(blind);
     EXPECT_FALSE(r.tracked);
-    new_submap |= r.new_submap;
+    EXPECT_EQ(r.new_submap, k == options.tracking.lost_frames_to_reset) << "blind frame " << k;
   }
-  EXPECT_TRUE(new_submap);
   EXPECT_EQ(front.submaps().size(), 2u);
   EXPECT_EQ(front.trajectory().size(), 90u);
+
+  // A submap of at most tracking.young_submap_keyframes keyframes is left at its first lost frame
+  // (ORB-SLAM resets a map that small): a fresh RGB-D submap lost again at once does not hold
+  // recovery up for lost_frames_to_reset frames.
+  io::Frame seen = reader->read(89);
+  seen.index = blind.index + 1;
+  seen.timestamp = blind.timestamp + 1.0 / 30;
+  ASSERT_TRUE(front.process(seen).tracked);  // RGB-D initialises the new submap from one frame
+  ASSERT_EQ(front.submap().num_keyframes(), 1u);
+  blind.index = seen.index + 1;
+  blind.timestamp = seen.timestamp + 1.0 / 30;
+  const FrameResult r = front.process(blind);
+  EXPECT_FALSE(r.tracked);
+  EXPECT_TRUE(r.new_submap);
+  EXPECT_EQ(front.submaps().size(), 3u);
 }
 
 // Lost for a few blind frames, then shown an earlier part of the aisle: the motion model cannot
@@ -147,49 +161,6 @@ TEST(FrontProcess, RelocalisesInTheSameSubmapAfterBlindFrames) {
   EXPECT_FALSE(front.process(blind).tracked);
   EXPECT_EQ(front.place_database().size(), map.num_keyframes());
   for (const auto& [id, kf] : map.keyframes()) EXPECT_TRUE(front.place_database().contains(id)) << "keyframe " << id;
-}
-
-// A submap with many keyframes waits tracking.lost_frames_to_reset lost frames for a relocalisation;
-// one of at most tracking.young_submap_keyframes keyframes is left at its first lost frame (in RGB-D
-// too: a fresh submap that is lost again would otherwise hold recovery up for 0.5 s).
-TEST(FrontProcess, StartsOverAtOnceWhenAYoungSubmapIsLost) {
-  const fs::path bin = wardmap_binary();
-  if (!fs::exists(bin)) GTEST_SKIP() << "wardmap executable not built: " << bin;
-  const fs::path seq = test::scratch_dir() / "aisle_young";
-  ASSERT_TRUE(render(seq, "--scenario aisle_straight --variant slow --seed 3 --frames 45"));
-  const io::Settings settings = io::load_settings(seq / "settings.yaml");
-  io::ReaderOptions ro;
-  ro.depth_factor = settings.camera.depth_map_factor;
-  auto reader = io::open_sequence(seq, ro);
-  for (const int young : {5, 0}) {
-    FrontOptions options = load_front_options(settings);
-    options.tracking.young_submap_keyframes = young;
-    FrontProcess front(options, settings.camera.camera);
-    for (size_t i = 0; i < 40; ++i) ASSERT_TRUE(front.process(reader->read(i)).tracked) << "frame " << i;
-    ASSERT_GT(front.submap().num_keyframes(), 5u);
-    io::Frame blind = reader->read(39);
-    blind.image.setTo(0);
-    blind.depth.setTo(0);
-    double t = blind.timestamp;
-    auto lost_frames_until_new_submap = [&]() {
-      for (int k = 1; k <= 30; ++k) {
-        blind.timestamp = t += 1.0 / 30;
-        const FrameResult r = front.process(blind);
-        EXPECT_FALSE(r.tracked);
-        if (r.new_submap) return k;
-      }
-      return -1;
-    };
-    EXPECT_EQ(lost_frames_until_new_submap(), options.tracking.lost_frames_to_reset) << "young " << young;
-    io::Frame f = reader->read(40);
-    f.timestamp = t += 1.0 / 30;
-    ASSERT_TRUE(front.process(f).tracked);  // RGB-D initialises from one frame
-    EXPECT_EQ(front.submaps().size(), 2u);
-    EXPECT_EQ(front.submap().num_keyframes(), 1u);
-    EXPECT_EQ(lost_frames_until_new_submap(), young > 0 ? 1 : options.tracking.lost_frames_to_reset)
-        << "young " << young;
-    EXPECT_EQ(front.submaps().size(), 3u);
-  }
 }
 
 namespace {
