@@ -33,11 +33,11 @@ std::vector<ChallengeSegment> read_challenges(const std::filesystem::path& file)
 
 std::vector<ChallengeRecovery> challenge_recovery(const std::vector<FrameState>& frames,
                                                   const std::vector<ChallengeSegment>& segments, int hold_frames) {
+  std::vector<ChallengeRecovery> out;
+  if (frames.empty()) return out;
   // run[i]: how many frames from i on are localised in a row.
   std::vector<int> run(frames.size() + 1, 0);
   for (size_t i = frames.size(); i-- > 0;) run[i] = localised(frames[i].status) ? run[i + 1] + 1 : 0;
-  std::vector<ChallengeRecovery> out;
-  if (frames.empty()) return out;
   for (const ChallengeSegment& s : segments) {
     if (s.end < frames.front().timestamp || s.begin > frames.back().timestamp) continue;
     ChallengeRecovery r;
