@@ -58,6 +58,7 @@ void FrontOptions::validate(const std::filesystem::path& file) const {
   check_range(t.init_ratio, 0.1, 1.0, "tracking.init_ratio", file);
   check_range(t.init_level_span, 0, 7, "tracking.init_level_span", file);
   check_range(t.init_max_frames, 1, 100000, "tracking.init_max_frames", file);
+  check_range(t.init_still_px, 0.0, 100.0, "tracking.init_still_px", file);
   check_range(t.reloc_candidates, 1, 1000, "tracking.reloc_candidates", file);
   check_range(t.reloc_min_matches, 6, 100000, "tracking.reloc_min_matches", file);
   check_range(t.reloc_pnp_error, 0.5, 100.0, "tracking.reloc_pnp_error", file);
@@ -180,6 +181,7 @@ FrontOptions load_front_options(const io::Settings& settings) {
   tk.read("init_ratio", k.init_ratio);
   tk.read("init_level_span", k.init_level_span);
   tk.read("init_max_frames", k.init_max_frames);
+  tk.read("init_still_px", k.init_still_px);
   tk.read("reloc_candidates", k.reloc_candidates);
   tk.read("reloc_min_matches", k.reloc_min_matches);
   tk.read("reloc_pnp_error", k.reloc_pnp_error);

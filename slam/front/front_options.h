@@ -84,6 +84,10 @@ struct TrackingOptions {
   // init_min_matches (a camera closing in fast); 0: the same level only, as ORB-SLAM.
   int init_level_span = 1;              // tracking.init_level_span
   int init_max_frames = 30;             // tracking.init_max_frames: a reference older than this is replaced
+  // ...unless every frame since it showed its view unmoved (median match displacement under this many
+  // pixels): a camera standing still cannot initialise, and those frames are kept, by timestamp only,
+  // to take the first keyframe's pose once the map exists. 0: replaced regardless, as ORB-SLAM.
+  double init_still_px = 1.0;           // tracking.init_still_px
   TwoViewOptions two_view;              // tracking.init_*: H / F model selection and triangulation
   // Relocalisation (needs a vocabulary): candidates by bag of words, then PnP RANSAC.
   int reloc_candidates = 10;            // tracking.reloc_candidates: keyframes tried per lost frame

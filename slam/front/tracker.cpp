@@ -28,6 +28,19 @@ const char* to_string(TrackingState s) {
   return "?";
 }
 
+namespace {
+
+// The median distance between matched keypoints of two frames (pixels).
+double median_displacement(const std::vector<Eigen::Vector2d>& p1, const std::vector<Eigen::Vector2d>& p2) {
+  if (p1.empty()) return 0;
+  std::vector<double> d(p1.size());
+  for (size_t i = 0; i < p1.size(); ++i) d[i] = (p2[i] - p1[i]).norm();
+  std::nth_element(d.begin(), d.begin() + static_cast<long>(d.size() / 2), d.end());
+  return d[d.size() / 2];
+}
+
+}  // namespace
+
 Tracker::Tracker(const FrontOptions& options, const PinholeCamera& camera, LocalMapper& mapper)
     : options_(options), camera_(camera), matcher_(options.matcher, camera), mapper_(mapper) {
   pose_options_.rounds = options.tracking.pose_rounds;
@@ -129,10 +142,20 @@ bool Tracker::initialise_monocular(Frame& frame) {
     init_reference_.reset();
     return false;
   }
-  if (!init_reference_ || frame.id() - init_reference_->id() > static_cast<std::uint64_t>(t.init_max_frames)) {
+  const bool aged = init_reference_ && frame.id() - init_since_ > static_cast<std::uint64_t>(t.init_max_frames);
+  if (aged && t.init_still_px > 0 && !init_window_moved_ && !init_window_.empty()) {
+    // Every frame since the reference shows its view unmoved: the camera stands still, and a newer
+    // reference would be no better. Keep it; its frames take its pose once the map exists.
+    for (const Frame& f : init_window_) init_still_.push_back(f.timestamp());
+    init_since_ = init_window_.back().id();
+    init_window_.clear();
+  } else if (!init_reference_ || aged) {
     init_reference_ = std::make_unique<Frame>(frame);
     init_prior_ = frame.features().points;
+    init_since_ = frame.id();
     init_window_.clear();
+    init_window_moved_ = false;
+    init_still_.clear();
     return false;
   }
   const FrameFeatures& f1 = init_reference_->features();
@@ -164,6 +187,7 @@ bool Tracker::initialise_monocular(Frame& frame) {
   const auto r = reconstruct_two_views(p1, p2, camera_, tv);
   if (!r) {  // not enough parallax or ambiguous: keep the reference, try the next frame
     init_window_.push_back(frame);
+    init_window_moved_ = init_window_moved_ || median_displacement(p1, p2) >= t.init_still_px;
     return false;
   }
   // Matches re-indexed on the reference frame's keypoints, keeping only the triangulated ones.
@@ -183,6 +207,7 @@ bool Tracker::initialise_monocular(Frame& frame) {
   }
   init_reference_.reset();
   init_window_.clear();
+  init_still_.clear();
   return ok;
 }
 
@@ -190,13 +215,16 @@ std::vector<TrackingOutcome::Backfilled> Tracker::backfill_initialisation_window
                                                                                 const std::shared_ptr<KeyFrame>& k2) {
   const KeyFrame &kf1 = *k1, &kf2 = *k2;
   std::vector<TrackingOutcome::Backfilled> out{{kf1.timestamp(), kf1.pose_cw(), k1}};
+  for (double still : init_still_) out.push_back({still, kf1.pose_cw(), k1});  // the view of the first keyframe
   std::vector<std::shared_ptr<MapPoint>> points;
   for (const auto& [id, mp] : submap_->map_points())
     if (!mp->bad()) points.push_back(mp);
-  const double span = kf2.timestamp() - kf1.timestamp();
+  // The camera left the first keyframe's view after its last still frame.
+  const double left = init_still_.empty() ? kf1.timestamp() : init_still_.back();
+  const double span = kf2.timestamp() - left;
   for (Frame& f : init_window_) {
     // Start from the pose interpolated between the two keyframes, then track against the new map.
-    const double s = span > 0 ? (f.timestamp() - kf1.timestamp()) / span : 0.5;
+    const double s = span > 0 ? (f.timestamp() - left) / span : 0.5;
     f.set_pose_cw(SE3::interpolate(kf1.pose_cw(), kf2.pose_cw(), s));
     std::fill(f.map_points.begin(), f.map_points.end(), nullptr);
     std::fill(f.outlier.begin(), f.outlier.end(), 0);

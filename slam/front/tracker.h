@@ -108,6 +108,11 @@ class Tracker {
   std::unique_ptr<Frame> init_reference_;
   std::vector<Eigen::Vector2d> init_prior_;
   std::vector<Frame> init_window_;  // the frames since init_reference_ (for backfilling)
+  // tracking.init_still_px: the reference's age counts from this frame id; whether a frame of
+  // init_window_ moved from the reference's view; the earlier frames that showed it unmoved.
+  std::uint64_t init_since_ = 0;
+  bool init_window_moved_ = false;
+  std::vector<double> init_still_;
   std::vector<TrackingOutcome::Backfilled> backfilled_;
   std::shared_ptr<const place::Vocabulary> vocabulary_;
   place::KeyframeDatabase place_database_;

@@ -321,4 +321,60 @@ TEST(FrontProcess, FlowStopsOverItsTimeBudgetInThreadedRunsOnly) {
   EXPECT_DOUBLE_EQ(flow_budget_seconds(t, false, vga), 0.015);
 }
 
+// A monocular camera standing still cannot initialise (no parallax). With tracking.init_still_px the
+// reference frame is kept past tracking.init_max_frames while every frame shows its view unmoved, and
+// once the camera moves and the map exists, the still frames take the first keyframe's pose. ORB-SLAM's
+// rule (0) replaces the reference and loses all but the last window of still frames.
+TEST(FrontProcess, MonocularStillStartIsLocalisedOnceTheCameraMoves) {
+  const fs::path bin = wardmap_binary();
+  if (!fs::exists(bin)) GTEST_SKIP() << "wardmap executable not built: " << bin;
+  const fs::path seq = test::scratch_dir() / "aisle_still";
+  ASSERT_TRUE(render(seq, "--scenario aisle_straight --variant slow --seed 1 --frames 60"));
+  const io::Settings settings = io::load_settings(seq / "settings.yaml");
+  auto reader = io::open_sequence(seq);
+  const Trajectory& gt = reader->ground_truth();
+  ASSERT_EQ(gt.size(), 60u);
+  const auto run = [&](double still_px, int still_frames, Trajectory& truth) {
+    FrontOptions options = load_front_options(settings);
+    options.monocular = true;
+    options.tracking.init_still_px = still_px;
+    FrontProcess front(options, settings.camera.camera);
+    truth = Trajectory();
+    const double dt = 1.0 / 30;
+    io::Frame still = reader->read(0);
+    for (int k = 0; k < still_frames; ++k) {  // the first frame, again and again
+      still.index = static_cast<size_t>(k);
+      still.timestamp = k * dt;
+      front.process(still);
+      truth.push_back(still.timestamp, gt.poses[0]);
+    }
+    for (size_t i = 1; i < reader->size(); ++i) {
+      io::Frame f = reader->read(i);
+      f.index = static_cast<size_t>(still_frames) + i - 1;
+      f.timestamp = static_cast<double>(f.index) * dt;
+      front.process(f);
+      truth.push_back(f.timestamp, gt.poses[i]);
+    }
+    return front.trajectory();
+  };
+  const int still_frames = 75;  // two and a half initialisation windows (tracking.init_max_frames 30)
+  Trajectory truth;
+  const Trajectory est = run(1.0, still_frames, truth);
+  ASSERT_EQ(est.size(), truth.size()) << "every frame localised";
+  // The still frames stay at the first one's place (to 1 % of the path, the map's scale being arbitrary).
+  const double path = (est.poses.back().translation() - est.poses[0].translation()).norm();
+  for (int k = 1; k < still_frames; ++k)
+    EXPECT_LT((est.poses[static_cast<size_t>(k)].translation() - est.poses[0].translation()).norm(), 0.01 * path)
+        << "still frame " << k;
+  const auto pairs = eval::associate(truth, est, eval::AssociationOptions{});
+  const double ate = eval::compute_ate(truth, est, pairs, eval::Alignment::Sim3).stats.rmse;
+  EXPECT_LE(ate, 0.02) << "ATE (Sim(3)) RMSE " << ate << " m";
+  RecordProperty("ate_sim3_m", std::to_string(ate));
+
+  const Trajectory old_rule = run(0.0, still_frames, truth);
+  EXPECT_LE(old_rule.size(), truth.size() - static_cast<size_t>(still_frames - 31))
+      << "the old rule keeps at most the last window of still frames";
+  RecordProperty("localised_old_rule", std::to_string(old_rule.size()) + " of " + std::to_string(truth.size()));
+}
+
 }  // namespace wardmap::slam
