@@ -279,13 +279,16 @@ double run_slam_job(const SlamJob& job) {
     statuses.push_back(status);
     submap_of.push_back(r.submap);
     stamps.push_back(r.timestamp);
-    for (double b : r.backfilled)  // localised once the monocular map existed
-      for (size_t k = stamps.size(); k-- > 0;)
-        if (stamps[k] == b) {
-          statuses[k] = "backfilled";
-          submap_of[k] = r.submap;
-          break;
-        }
+    // Localised once the monocular map existed (a still start can make these thousands). Both lists
+    // ascend: one pass back from the newest frame.
+    size_t k = stamps.size();
+    for (auto b = r.backfilled.rbegin(); b != r.backfilled.rend(); ++b) {
+      while (k > 0 && stamps[k - 1] > *b) --k;
+      if (k > 0 && stamps[k - 1] == *b) {
+        statuses[k - 1] = "backfilled";
+        submap_of[k - 1] = r.submap;
+      }
+    }
     std::snprintf(line, sizeof line, "%.6f,%.6f,%.6f,%.6f,%.6f,%d,%d,%d,%d\n", r.timestamp, r.seconds,
                   r.extract_seconds, r.mapping_seconds, r.wait_seconds, r.flow ? 1 : 0, r.features, r.inliers,
                   r.keyframe ? 1 : 0);

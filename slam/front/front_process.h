@@ -36,7 +36,7 @@ struct FrameResult {
   int inliers = 0;
   int submap = 0;              // id of the submap the frame was tracked in
   bool new_submap = false;     // tracking was lost too long: a new submap starts with the next frame
-  // Monocular initialisation: timestamps of the earlier frames localised once the map existed.
+  // Monocular initialisation: timestamps of the earlier frames localised once the map existed, ascending.
   std::vector<double> backfilled;
   double seconds = 0;          // wall time spent on this frame (extraction, tracking, inline mapping)
   // Not in `seconds`: time waiting for a threaded mapper still busy mapping.max_lag_frames after a

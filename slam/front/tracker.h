@@ -32,8 +32,9 @@ struct TrackingOutcome {
   int matches = 0;        // after motion / reference tracking
   int inliers = 0;        // after local-map tracking
   std::shared_ptr<KeyFrame> reference;
-  // Monocular initialisation: the earlier frames of the initialisation window (the reference frame
-  // and those between), localised against the new map once it exists.
+  // Monocular initialisation: the earlier frames of the initialisation window (the reference frame,
+  // the frames that showed its view unmoved, and those after), localised against the new map once it
+  // exists; in time order.
   struct Backfilled {
     double timestamp;
     SE3 T_cw;
