@@ -54,7 +54,7 @@ fs::path find_shipped(const fs::path& relative) {
 
 // With -v: where tracking was lost and found again, and why (the counts the tracker judged).
 void log_tracking_event(const slam::FrameResult& r, std::string_view status, std::string_view previous,
-                        int previous_submap, const slam::FrontOptions& options) {
+                        bool after_new_submap, const slam::FrontOptions& options) {
   if (!spdlog::should_log(spdlog::level::debug)) return;
   const bool lost_now = status == "lost" && previous != "lost" && previous != "initialising" && !previous.empty();
   if (lost_now && r.inliers > 0)  // a pose came from the last frame or the reference keyframe, the local map failed
@@ -68,11 +68,20 @@ void log_tracking_event(const slam::FrameResult& r, std::string_view status, std
   else if (status == "relocalised")
     spdlog::debug("frame {} ({:.3f} s): relocalised in submap {}, {} local-map inliers", r.index, r.timestamp,
                   r.submap, r.inliers);
-  else if (status == "tracked" && (previous.empty() || previous == "initialising" || r.submap != previous_submap))
+  else if (status == "tracked" && (previous.empty() || previous == "initialising" || after_new_submap))
     spdlog::debug("frame {} ({:.3f} s): submap {} initialised{}", r.index, r.timestamp, r.submap,
                   r.backfilled.empty() ? "" : fmt::format(", {} earlier frames backfilled", r.backfilled.size()));
-  if (r.new_submap)
+  if (r.new_submap && !r.discarded_submap)
     spdlog::debug("frame {} ({:.3f} s): submap {} starts with the next frame", r.index, r.timestamp, r.submap + 1);
+}
+
+// A submap discarded (slam::FrameResult::discarded_submap): the frames localised in it, rows `first`
+// on, become lost. Returns how many.
+size_t unlocalise_discarded(std::vector<std::string>& statuses, size_t first) {
+  size_t n = 0;
+  for (size_t k = first; k < statuses.size(); ++k)
+    if (statuses[k] != "lost" && statuses[k] != "initialising") statuses[k] = "lost", ++n;
+  return n;
 }
 
 // A wrong depth factor (a TUM file's 5000 on a sensor that writes millimetres, ...) scales every
@@ -236,6 +245,9 @@ double run_slam_job(const SlamJob& job) {
   size_t flow_frames = 0;  // frames with the optical flow on (tracking.flow_extend / _mono, flow_budget_ms)
   std::vector<std::string> statuses;
   std::vector<int> submap_of;
+  bool after_new_submap = false;  // the previous frame started a new submap
+  size_t submap_first_row = 0;    // the active submap's first frame
+  size_t discarded_submaps = 0;   // submaps discarded (tracking.discard_submap_keyframes)
   char line[160];
   // Objects: keyframe images are detected (and embedded) on a thread of their own while the SLAM
   // runs; measurement and association wait for the final keyframe poses. --deterministic: after.
@@ -275,7 +287,8 @@ double run_slam_job(const SlamJob& job) {
                          : r.state == slam::TrackingState::kNotInitialised ? "initialising"
                                                                            : "lost";
     log_tracking_event(r, status, statuses.empty() ? std::string_view() : std::string_view(statuses.back()),
-                       submap_of.empty() ? -1 : submap_of.back(), options);
+                       after_new_submap, options);
+    after_new_submap = r.new_submap;
     statuses.push_back(status);
     submap_of.push_back(r.submap);
     stamps.push_back(r.timestamp);
@@ -289,6 +302,15 @@ double run_slam_job(const SlamJob& job) {
         submap_of[k - 1] = r.submap;
       }
     }
+    if (r.discarded_submap) {
+      ++discarded_submaps;
+      const size_t n = unlocalise_discarded(statuses, submap_first_row);
+      spdlog::debug("frame {} ({:.3f} s): submap {} discarded, left with at most {} keyframes "
+                    "(tracking.discard_submap_keyframes): its {} localised frames are lost; a fresh submap {} "
+                    "starts with the next frame",
+                    r.index, r.timestamp, r.submap, options.tracking.discard_submap_keyframes, n, r.submap);
+    }
+    if (r.new_submap) submap_first_row = statuses.size();
     std::snprintf(line, sizeof line, "%.6f,%.6f,%.6f,%.6f,%.6f,%d,%d,%d,%d\n", r.timestamp, r.seconds,
                   r.extract_seconds, r.mapping_seconds, r.wait_seconds, r.flow ? 1 : 0, r.features, r.inliers,
                   r.keyframe ? 1 : 0);
@@ -321,6 +343,7 @@ double run_slam_job(const SlamJob& job) {
   json report = {{"sequence", job.sequence.string()}, {"mode", mode}, {"settings", settings_file.string()},
                  {"realtime", job.realtime},
                  {"frames", reader->size()}, {"frames_processed", processed}, {"frames_in_final_map", traj.size()}, {"submaps", front.submaps().size()},
+                 {"submaps_discarded", discarded_submaps},
                  {"tracking_ms", {{"median", 1e3 * percentile(seconds, 0.5)}, {"p95", 1e3 * percentile(seconds, 0.95)},
                                   {"max", 1e3 * percentile(seconds, 1.0)}}},
                  // keyframes the threaded mapper registered without fusion, BA and culling (it was behind)
@@ -354,7 +377,8 @@ double run_slam_job(const SlamJob& job) {
   std::string md = "# wardmap run (SLAM front-process)\n\n- sequence: `" + job.sequence.string() + "`\n- mode: " + mode +
                    (job.deterministic ? ", deterministic (mapping inline)" : job.realtime ? ", threaded, input at the sequence's rate (--realtime)" : ", threaded") +
                    "\n- frames: " + std::to_string(reader->size()) + ", in the final map: " + std::to_string(traj.size()) +
-                   ", submaps: " + std::to_string(front.submaps().size()) + "\n";
+                   ", submaps: " + std::to_string(front.submaps().size()) +
+                   (discarded_submaps ? " (and " + std::to_string(discarded_submaps) + " discarded, too small to keep)" : "") + "\n";
   md += "- settings: `" + settings_file.string() + "`" + overrides_text(job.settings_overrides) + "\n" +
         settings_notes_text(settings.notes);
   if (interrupted)

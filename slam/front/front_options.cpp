@@ -49,6 +49,7 @@ void FrontOptions::validate(const std::filesystem::path& file) const {
   check_range(t.keyframe_close_untracked, 0, 100000, "tracking.keyframe_close_untracked", file);
   check_range(t.lost_frames_to_reset, 1, 100000, "tracking.lost_frames_to_reset", file);
   check_range(t.young_submap_keyframes, 0, 100000, "tracking.young_submap_keyframes", file);
+  check_range(t.discard_submap_keyframes, 0, 100000, "tracking.discard_submap_keyframes", file);
   check_range(t.min_depth_points, 0, 100000, "tracking.min_depth_points", file);
   check_range(t.motion_radius_mono, 1.0, 200.0, "tracking.motion_radius_mono", file);
   check_range(t.keyframe_ref_ratio_mono, 0.0, 1.0, "tracking.keyframe_ref_ratio_mono", file);
@@ -172,6 +173,7 @@ FrontOptions load_front_options(const io::Settings& settings) {
   tk.read("keyframe_close_untracked", k.keyframe_close_untracked);
   tk.read("lost_frames_to_reset", k.lost_frames_to_reset);
   tk.read("young_submap_keyframes", k.young_submap_keyframes);
+  tk.read("discard_submap_keyframes", k.discard_submap_keyframes);
   tk.read("min_depth_points", k.min_depth_points);
   tk.read("motion_radius_mono", k.motion_radius_mono);
   tk.read("keyframe_ref_ratio_mono", k.keyframe_ref_ratio_mono);

@@ -73,6 +73,10 @@ struct TrackingOptions {
   // A submap of at most this many keyframes is not worth relocalising into: lost there, a new one starts
   // at once (ORB-SLAM2 resets a map of 5 keyframes or fewer, ORB-SLAM3 of 10).
   int young_submap_keyframes = 5;       // tracking.young_submap_keyframes
+  // A submap left with at most this many keyframes is discarded, as ORB-SLAM3 resets its active map
+  // (below 10 keyframes): its frames become lost and the new submap takes its id. Larger ones are kept
+  // for the merge, whose Sim(3) from timestamp-matched keyframes needs three (RUMI, Umeyama). 0: keep all.
+  int discard_submap_keyframes = 2;     // tracking.discard_submap_keyframes
   // Monocular (ORB-SLAM's values where the sensor changes them).
   double motion_radius_mono = 15.0;     // tracking.motion_radius_mono (px): no depth to bound the search
   double keyframe_ref_ratio_mono = 0.9; // tracking.keyframe_ref_ratio_mono

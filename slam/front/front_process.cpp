@@ -124,8 +124,17 @@ FrameResult FrontProcess::process(const io::Frame& in) {
   }
   if (start_submap) {
     wait_for_mapper();  // the mapper finishes the old submap's keyframes first
-    submap_ = std::make_shared<Submap>(static_cast<int>(submaps_.size()), ids_);
-    submaps_.push_back(submap_);
+    r.discarded_submap = submap_->num_keyframes() <= static_cast<size_t>(options_.tracking.discard_submap_keyframes);
+    if (r.discarded_submap) {  // ORB-SLAM3 resets its active map: a fresh submap takes the id
+      const int id = submap_->id();
+      records_.erase(std::remove_if(records_.begin(), records_.end(), [id](const Record& rec) { return rec.submap == id; }),
+                     records_.end());
+      submap_ = std::make_shared<Submap>(id, ids_);
+      submaps_.back() = submap_;
+    } else {
+      submap_ = std::make_shared<Submap>(static_cast<int>(submaps_.size()), ids_);
+      submaps_.push_back(submap_);
+    }
     mapper_.set_submap(submap_);
     tracker_.set_submap(submap_, last_tracked_pose_cw_);
     flow_budget_.restart();  // the new map's first window has the flow, as the first map's had

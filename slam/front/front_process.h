@@ -3,7 +3,8 @@
 // so bundle-adjustment corrections reach them). The entry point for `wardmap run`.
 // When tracking stays lost for tracking.lost_frames_to_reset frames (no relocalisation yet), or is lost
 // in a submap of at most tracking.young_submap_keyframes keyframes, a new submap is started, seeded at
-// the last tracked pose; the old submaps are kept for a later merge.
+// the last tracked pose; the old submaps are kept for a later merge, except one of at most
+// tracking.discard_submap_keyframes keyframes, which is discarded and whose id the new submap takes.
 #pragma once
 
 #include <chrono>
@@ -36,6 +37,9 @@ struct FrameResult {
   int inliers = 0;
   int submap = 0;              // id of the submap the frame was tracked in
   bool new_submap = false;     // tracking was lost too long: a new submap starts with the next frame
+  // With new_submap: submap `submap` held too few keyframes to keep and is discarded. The frames
+  // localised in it are lost now (gone from trajectory()), and the new submap takes its id.
+  bool discarded_submap = false;
   // Monocular initialisation: timestamps of the earlier frames localised once the map existed, ascending.
   std::vector<double> backfilled;
   double seconds = 0;          // wall time spent on this frame (extraction, tracking, inline mapping)

@@ -720,6 +720,81 @@ TEST(CliPipeline, VerboseRunSaysWhereTrackingWasLostAndWhy) {
       << r.output;
 }
 
+// A submap lost with at most tracking.discard_submap_keyframes keyframes is discarded: the frames it
+// localised become lost in frames.csv, its id goes to the next submap, and report.json counts it. With
+// 0 every submap is kept, and the two runs differ by exactly those frames and submaps.
+TEST(CliPipeline, TooSmallSubmapsAreDiscardedAndTheirFramesLost) {
+  const fs::path dir = scratch_dir();
+  // The quick layout's textureless wall (frames 75-109): a submap initialised at its end is lost again.
+  ASSERT_EQ(wardmap_cli("-q synth --scenario corridor_loss --variant quick --frames 120 --out " + shq(dir / "seq")).code,
+            0);
+  struct Run {
+    std::string output;
+    std::vector<std::pair<std::string, int>> rows;  // status, submap per frame
+    nlohmann::json report;
+    size_t localised = 0;
+  };
+  const auto run = [&](const std::string& extra, const std::string& out) {
+    Run run;
+    const CliResult r = wardmap_cli("-v run " + shq(dir / "seq") + " --mode rgbd --deterministic" + extra + " --out " +
+                                    shq(dir / out));
+    EXPECT_EQ(r.code, 0) << r.output;
+    run.output = r.output;
+    std::ifstream frames(dir / out / "frames.csv");
+    std::string line;
+    std::getline(frames, line);  // header
+    while (std::getline(frames, line)) {
+      const auto a = line.find(','), b = line.rfind(',');
+      run.rows.emplace_back(line.substr(a + 1, b - a - 1), std::stoi(line.substr(b + 1)));
+      run.localised += run.rows.back().first == "tracked" || run.rows.back().first == "relocalised";
+    }
+    std::ifstream report(dir / out / "report.json");
+    run.report = nlohmann::json::parse(report);
+    return run;
+  };
+  const Run discard = run("", "discard"), keep = run(" --set tracking.discard_submap_keyframes=0", "keep");
+  ASSERT_EQ(discard.rows.size(), 120u);
+  ASSERT_EQ(keep.rows.size(), 120u);
+
+  // Each "submap S discarded ... its N localised frames are lost" line: the frames since submap S
+  // started are none of them localised now, and N of them were in the run that keeps it.
+  const std::string said = "discarded, left with at most 2 keyframes (tracking.discard_submap_keyframes): its ";
+  size_t discarded = 0, unlocalised = 0;
+  for (auto at = discard.output.find(said); at != std::string::npos; at = discard.output.find(said, at + 1)) {
+    const auto start = discard.output.rfind("[debug] frame ", at);
+    ASSERT_NE(start, std::string::npos);
+    const int frame = std::stoi(discard.output.substr(start + 14));
+    const size_t n = std::stoul(discard.output.substr(at + said.size()));
+    EXPECT_GE(n, 1u);
+    // The discarded submap's first frame: the one after the previous line that started a submap.
+    size_t first = 0;
+    const auto before = discard.output.rfind("starts with the next frame", start);
+    if (before != std::string::npos)
+      first = std::stoul(discard.output.substr(discard.output.rfind("[debug] frame ", before) + 14)) + 1;
+    ASSERT_LE(first, static_cast<size_t>(frame));
+    size_t were = 0;
+    for (size_t k = first; k <= static_cast<size_t>(frame); ++k) {
+      EXPECT_TRUE(discard.rows[k].first == "lost" || discard.rows[k].first == "initialising") << "frame " << k;
+      were += keep.rows[k].first == "tracked" || keep.rows[k].first == "relocalised";
+    }
+    EXPECT_EQ(were, n) << "frame " << frame;
+    ++discarded;
+    unlocalised += n;
+  }
+  ASSERT_GE(discarded, 1u) << discard.output;
+  EXPECT_EQ(discard.report.at("submaps_discarded").get<size_t>(), discarded);
+  EXPECT_EQ(keep.report.at("submaps_discarded").get<size_t>(), 0u);
+  EXPECT_EQ(keep.output.find(said), std::string::npos);
+  // Ids are reused: the submaps counted are those in frames.csv, and the kept run has the discarded ones too.
+  const auto submaps = [](const Run& r) { return static_cast<size_t>(r.rows.back().second) + 1; };
+  EXPECT_EQ(discard.report.at("submaps").get<size_t>(), submaps(discard));
+  EXPECT_EQ(keep.report.at("submaps").get<size_t>(), submaps(keep));
+  EXPECT_EQ(keep.report.at("submaps").get<size_t>(), discard.report.at("submaps").get<size_t>() + discarded);
+  EXPECT_EQ(keep.localised, discard.localised + unlocalised);
+  // The final map is the same.
+  EXPECT_EQ(read_all(dir / "discard" / "trajectory.txt"), read_all(dir / "keep" / "trajectory.txt"));
+}
+
 // --realtime feeds the frames at their timestamps (the run lasts at least the sequence's span) and
 // says so in the report; it cannot be combined with --deterministic.
 TEST(CliPipeline, RealtimeRunIsPacedAtTheSequencesRate) {

@@ -98,7 +98,35 @@ TEST(FrontProcess, TracksASyntheticRgbdAisle) {
   const FrameResult r = front.process(blind);
   EXPECT_FALSE(r.tracked);
   EXPECT_TRUE(r.new_submap);
-  EXPECT_EQ(front.submaps().size(), 3u);
+  // One keyframe is too few to keep (tracking.discard_submap_keyframes, 2): the submap is discarded,
+  // its frame is no longer in any trajectory, and the next submap takes its id.
+  EXPECT_TRUE(r.discarded_submap);
+  EXPECT_EQ(r.submap, 1);
+  ASSERT_EQ(front.submaps().size(), 2u);
+  EXPECT_EQ(front.submap().id(), 1);
+  EXPECT_EQ(front.submaps().back().get(), &front.submap());
+  EXPECT_TRUE(front.trajectory(1).empty());
+  EXPECT_EQ(front.trajectory().size(), 90u);
+  seen.index = blind.index + 1;
+  seen.timestamp = blind.timestamp + 1.0 / 30;
+  const FrameResult again = front.process(seen);
+  EXPECT_TRUE(again.tracked);
+  EXPECT_EQ(again.submap, 1);
+  EXPECT_EQ(front.submap().num_keyframes(), 1u);
+  EXPECT_EQ(front.trajectory(1).size(), 1u);
+
+  // With 0 every submap is kept: the one-keyframe submap stays beside the new one.
+  FrontOptions keep_all = options;
+  keep_all.tracking.discard_submap_keyframes = 0;
+  FrontProcess kept(keep_all, settings.camera.camera);
+  ASSERT_TRUE(kept.process(seen).tracked);
+  blind.index = seen.index + 1;
+  blind.timestamp = seen.timestamp + 1.0 / 30;
+  const FrameResult k = kept.process(blind);
+  EXPECT_TRUE(k.new_submap);
+  EXPECT_FALSE(k.discarded_submap);
+  EXPECT_EQ(kept.submaps().size(), 2u);
+  EXPECT_EQ(kept.trajectory(0).size(), 1u);
 }
 
 // Lost for a few blind frames, then shown an earlier part of the aisle: the motion model cannot
