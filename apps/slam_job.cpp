@@ -53,8 +53,9 @@ fs::path find_shipped(const fs::path& relative) {
 }
 
 // With -v: where tracking was lost and found again, and why (the counts the tracker judged).
+// submap_starts: the frame is the first since a new submap started.
 void log_tracking_event(const slam::FrameResult& r, std::string_view status, std::string_view previous,
-                        bool after_new_submap, const slam::FrontOptions& options) {
+                        bool submap_starts, const slam::FrontOptions& options) {
   if (!spdlog::should_log(spdlog::level::debug)) return;
   const bool lost_now = status == "lost" && previous != "lost" && previous != "initialising" && !previous.empty();
   if (lost_now && r.inliers > 0)  // a pose came from the last frame or the reference keyframe, the local map failed
@@ -68,7 +69,7 @@ void log_tracking_event(const slam::FrameResult& r, std::string_view status, std
   else if (status == "relocalised")
     spdlog::debug("frame {} ({:.3f} s): relocalised in submap {}, {} local-map inliers", r.index, r.timestamp,
                   r.submap, r.inliers);
-  else if (status == "tracked" && (previous.empty() || previous == "initialising" || after_new_submap))
+  else if (status == "tracked" && (previous.empty() || previous == "initialising" || submap_starts))
     spdlog::debug("frame {} ({:.3f} s): submap {} initialised{}", r.index, r.timestamp, r.submap,
                   r.backfilled.empty() ? "" : fmt::format(", {} earlier frames backfilled", r.backfilled.size()));
   if (r.new_submap && !r.discarded_submap)
@@ -245,7 +246,6 @@ double run_slam_job(const SlamJob& job) {
   size_t flow_frames = 0;  // frames with the optical flow on (tracking.flow_extend / _mono, flow_budget_ms)
   std::vector<std::string> statuses;
   std::vector<int> submap_of;
-  bool after_new_submap = false;  // the previous frame started a new submap
   size_t submap_first_row = 0;    // the active submap's first frame
   size_t discarded_submaps = 0;   // submaps discarded (tracking.discard_submap_keyframes)
   char line[160];
@@ -287,8 +287,7 @@ double run_slam_job(const SlamJob& job) {
                          : r.state == slam::TrackingState::kNotInitialised ? "initialising"
                                                                            : "lost";
     log_tracking_event(r, status, statuses.empty() ? std::string_view() : std::string_view(statuses.back()),
-                       after_new_submap, options);
-    after_new_submap = r.new_submap;
+                       statuses.size() == submap_first_row, options);
     statuses.push_back(status);
     submap_of.push_back(r.submap);
     stamps.push_back(r.timestamp);

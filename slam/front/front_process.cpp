@@ -127,8 +127,7 @@ FrameResult FrontProcess::process(const io::Frame& in) {
     r.discarded_submap = submap_->num_keyframes() <= static_cast<size_t>(options_.tracking.discard_submap_keyframes);
     if (r.discarded_submap) {  // ORB-SLAM3 resets its active map: a fresh submap takes the id
       const int id = submap_->id();
-      records_.erase(std::remove_if(records_.begin(), records_.end(), [id](const Record& rec) { return rec.submap == id; }),
-                     records_.end());
+      while (!records_.empty() && records_.back().submap == id) records_.pop_back();  // its frames are the newest
       submap_ = std::make_shared<Submap>(id, ids_);
       submaps_.back() = submap_;
     } else {
