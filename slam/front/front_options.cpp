@@ -41,6 +41,7 @@ void FrontOptions::validate(const std::filesystem::path& file) const {
   check_range(t.chi2_mono, 0.1, 100.0, "tracking.chi2_mono", file);
   check_range(t.chi2_stereo, 0.1, 100.0, "tracking.chi2_stereo", file);
   check_range(t.keyframe_max_frames, 1, 10000, "tracking.keyframe_max_frames", file);
+  check_range(t.keyframe_still_px, 0.0, 100.0, "tracking.keyframe_still_px", file);
   check_range(t.keyframe_max_gap_seconds, 0.0, 3600.0, "tracking.keyframe_max_gap_seconds", file);
   check_range(t.keyframe_ref_ratio, 0.0, 1.0, "tracking.keyframe_ref_ratio", file);
   check_range(t.keyframe_ref_min_observations, 1, 100, "tracking.keyframe_ref_min_observations", file);
@@ -165,6 +166,7 @@ FrontOptions load_front_options(const io::Settings& settings) {
   tk.read("chi2_mono", k.chi2_mono);
   tk.read("chi2_stereo", k.chi2_stereo);
   tk.read("keyframe_max_frames", k.keyframe_max_frames);
+  tk.read("keyframe_still_px", k.keyframe_still_px);
   tk.read("keyframe_max_gap_seconds", k.keyframe_max_gap_seconds);
   tk.read("keyframe_ref_ratio", k.keyframe_ref_ratio);
   tk.read("keyframe_ref_min_observations", k.keyframe_ref_min_observations);

@@ -52,6 +52,11 @@ struct TrackingOptions {
   double chi2_mono = 5.991;            // tracking.chi2_mono: 95 % of chi2 with 2 dof
   double chi2_stereo = 7.815;          // tracking.chi2_stereo: 95 % of chi2 with 3 dof
   int keyframe_max_frames = 10;        // tracking.keyframe_max_frames: insert at least this often
+  // ...while the view moves: a frame whose tracked points moved less than this many pixels (median)
+  // from where the last keyframe's pose puts them makes no keyframe unless it tracks under a quarter
+  // of the reference's points. ORB-SLAM has no such rule; standing still, it (and this tracker)
+  // made a keyframe every 3 (monocular) or 10 (RGB-D) frames, each mapped and then culled. 0: off.
+  double keyframe_still_px = 1.0;      // tracking.keyframe_still_px
   // A keyframe the busy mapper cannot take now waits for the next frame (ORB-SLAM3's monocular rule),
   // unless the next frame would come more than this long after the last keyframe: then it is queued
   // now, and the mapper cuts its local BA short for it. At 30 Hz the wait is at most a frame or two

@@ -12,6 +12,9 @@ bool need_new_keyframe(const KeyFrameEvidence& e, const TrackingOptions& o) {
   const bool weak = e.tracked_inliers < 0.25 * e.reference_points || need_close;
   const bool fewer_than_reference =
       (e.tracked_inliers < ref_ratio * e.reference_points || need_close) && e.tracked_inliers > 15;
+  // A view unmoved since the last keyframe adds nothing to the map: a keyframe only if tracking is
+  // about to fail (a scene changing in front of a still camera).
+  if (e.view_motion_px < o.keyframe_still_px) return e.tracked_inliers > 15 && e.tracked_inliers < 0.25 * e.reference_points;
   // Unlike ORB-SLAM, a keyframe is also due after keyframe_max_frames whatever the reference holds
   // (its reference count is 0 until points gain observations, which a sparse map may never reach).
   if (too_long && e.tracked_inliers > 15) return true;

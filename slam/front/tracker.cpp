@@ -531,6 +531,21 @@ int Tracker::extend_by_flow(Frame& frame) {
   return gained;
 }
 
+double Tracker::view_motion_px(const Frame& frame, const KeyFrame& keyframe) const {
+  std::vector<Eigen::Vector2d> in_keyframe, in_frame;
+  const SE3& T_kw = keyframe.pose_cw();
+  for (size_t i = 0; i < frame.size(); ++i) {
+    const auto& mp = frame.map_points[i];
+    if (!mp || frame.outlier[i]) continue;
+    const Eigen::Vector3d p_k = T_kw * mp->position(), p_f = frame.pose_cw() * mp->position();
+    if (p_k.z() <= 0 || p_f.z() <= 0) continue;
+    in_keyframe.push_back(camera_.project(p_k));
+    in_frame.push_back(camera_.project(p_f));
+  }
+  if (in_frame.empty()) return std::numeric_limits<double>::infinity();
+  return median_displacement(in_keyframe, in_frame);
+}
+
 KeyFrameEvidence Tracker::evidence(const Frame& frame, int inliers) const {
   KeyFrameEvidence e;
   e.frames_since_keyframe = static_cast<int>(frame.id() - last_keyframe_frame_);
@@ -553,6 +568,7 @@ KeyFrameEvidence Tracker::evidence(const Frame& frame, int inliers) const {
   e.mapper_keyframes_waiting = mapper_.queued() > 0;
   const double period = last_frame_ ? frame.timestamp() - last_frame_->timestamp() : 0.0;
   e.deferred_gap_seconds = frame.timestamp() - last_keyframe_time_ + period;
+  if (options_.tracking.keyframe_still_px > 0 && last_keyframe_) e.view_motion_px = view_motion_px(frame, *last_keyframe_);
   return e;
 }
 

@@ -89,6 +89,9 @@ class Tracker {
   // place database.
   void adopt_keyframe(Frame& frame, const std::shared_ptr<KeyFrame>& kf);
   KeyFrameEvidence evidence(const Frame& frame, int inliers) const;
+  // Median pixel motion of the frame's tracked points between the keyframe's pose and the frame's
+  // (tracking.keyframe_still_px); infinite without a tracked point in front of both.
+  double view_motion_px(const Frame& frame, const KeyFrame& keyframe) const;
 
   FrontOptions options_;
   PinholeCamera camera_;

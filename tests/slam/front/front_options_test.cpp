@@ -132,6 +132,7 @@ TEST(FrontOptions, InvalidValuesNameTheKey) {
   expect_error("tracking:\n  flow_budget_frames: 0\n", "tracking.flow_budget_frames");
   expect_error("tracking:\n  keyframe_ref_min_observations: 0\n", "tracking.keyframe_ref_min_observations");
   expect_error("tracking:\n  init_still_px: -1\n", "tracking.init_still_px");
+  expect_error("tracking:\n  keyframe_still_px: -0.5\n", "tracking.keyframe_still_px");
   expect_error("tracking:\n  discard_submap_keyframes: -1\n", "tracking.discard_submap_keyframes");
   expect_error("mapping:\n  redundant_ratio: 1.5\n", "mapping.redundant_ratio");
   expect_error("mapping:\n  min_busy_seconds: -0.1\n", "mapping.min_busy_seconds");

@@ -401,4 +401,58 @@ TEST(FrontProcess, MonocularStillStartIsLocalisedOnceTheCameraMoves) {
   RecordProperty("localised_old_rule", std::to_string(old_rule.size()) + " of " + std::to_string(truth.size()));
 }
 
+// A stop in the middle of a run (tracking.keyframe_still_px): while the camera stands still, no
+// keyframe is made (at most one, for the motion since the last keyframe before the stop); with 0,
+// one every tracking.keyframe_max_frames, as before. Every frame stays tracked either way.
+TEST(FrontProcess, RgbdCameraStandingStillMakesNoKeyframes) {
+  const fs::path bin = wardmap_binary();
+  if (!fs::exists(bin)) GTEST_SKIP() << "wardmap executable not built: " << bin;
+  const fs::path seq = test::scratch_dir() / "aisle_stop";
+  ASSERT_TRUE(render(seq, "--scenario aisle_straight --variant slow --seed 1 --frames 60"));
+  const io::Settings settings = io::load_settings(seq / "settings.yaml");
+  io::ReaderOptions ro;
+  ro.depth_factor = settings.camera.depth_map_factor;
+  auto reader = io::open_sequence(seq, ro);
+  const Trajectory& gt = reader->ground_truth();
+  ASSERT_EQ(gt.size(), 60u);
+  // Frame 30 shown still_frames times; frames renumbered at 30 Hz.
+  const size_t stop = 30, still_frames = 60;
+  const size_t count = reader->size() + still_frames - 1;
+  const auto source_of = [&](size_t k) { return k < stop ? k : k < stop + still_frames ? stop : k - still_frames + 1; };
+  Trajectory truth;
+  for (size_t k = 0; k < count; ++k) truth.push_back(static_cast<double>(k) / 30, gt.poses[source_of(k)]);
+  struct Outcome {
+    int tracked = 0, still_keyframes = 0;
+    Trajectory trajectory;
+  };
+  const auto run = [&](double still_px) {
+    FrontOptions options = load_front_options(settings);
+    options.tracking.keyframe_still_px = still_px;
+    FrontProcess front(options, settings.camera.camera);
+    Outcome o;
+    for (size_t k = 0; k < count; ++k) {
+      io::Frame f = reader->read(source_of(k));
+      f.index = k;
+      f.timestamp = truth.timestamps[k];
+      const FrameResult r = front.process(f);
+      o.tracked += r.tracked ? 1 : 0;
+      if (k > stop && k < stop + still_frames && r.keyframe) ++o.still_keyframes;
+    }
+    o.trajectory = front.trajectory();
+    return o;
+  };
+  const Outcome still = run(1.0);
+  EXPECT_EQ(still.tracked, static_cast<int>(count));
+  EXPECT_LE(still.still_keyframes, 1);
+  const auto pairs = eval::associate(truth, still.trajectory, eval::AssociationOptions{});
+  const double ate = eval::compute_ate(truth, still.trajectory, pairs, eval::Alignment::SE3).stats.rmse;
+  EXPECT_LE(ate, 0.02) << "ATE RMSE " << ate << " m";
+  RecordProperty("ate_rmse_m", std::to_string(ate));
+
+  const Outcome off = run(0.0);
+  EXPECT_EQ(off.tracked, static_cast<int>(count));
+  EXPECT_GE(off.still_keyframes, 4) << "keyframe_max_frames (10) over " << still_frames << " still frames";
+  RecordProperty("still_keyframes_rule_off", std::to_string(off.still_keyframes));
+}
+
 }  // namespace wardmap::slam

@@ -282,6 +282,36 @@ TEST(KeyFramePolicy, IdleMapperCountsAsBusyRightAfterAKeyframe) {
   EXPECT_TRUE(need_new_keyframe(e, o));
 }
 
+// A camera standing still makes no keyframe, neither by the ratio nor by keyframe_max_frames,
+// unless tracking is about to fail; 0 switches the rule off.
+TEST(KeyFramePolicy, UnmovedViewMakesNoKeyframeUnlessTrackingIsWeak) {
+  TrackingOptions o;  // keyframe_still_px 1
+  KeyFrameEvidence e;
+  e.keyframes_in_map = 5;
+  e.reference_points = 400;
+  e.tracked_inliers = 250;  // < 0.75 x 400, not weak
+  e.tracked_close = 300;
+  e.untracked_close = 10;
+  e.frames_since_keyframe = 3;
+  e.view_motion_px = 1.5;
+  EXPECT_TRUE(need_new_keyframe(e, o));
+  e.view_motion_px = 0.4;
+  EXPECT_FALSE(need_new_keyframe(e, o));
+  e.frames_since_keyframe = 50;  // keyframe_max_frames passed long ago
+  e.tracked_inliers = 390;
+  EXPECT_FALSE(need_new_keyframe(e, o));
+  e.view_motion_px = 1.5;
+  EXPECT_TRUE(need_new_keyframe(e, o));
+  e.view_motion_px = 0.4;
+  e.tracked_inliers = 80;  // < 0.25 x 400: the scene changes in front of the still camera
+  EXPECT_TRUE(need_new_keyframe(e, o));
+  e.tracked_inliers = 10;  // too weak to make a keyframe from
+  EXPECT_FALSE(need_new_keyframe(e, o));
+  e.tracked_inliers = 390;
+  o.keyframe_still_px = 0;
+  EXPECT_TRUE(need_new_keyframe(e, o));
+}
+
 TEST(BoundedQueue, RefusesWhenFullAndDrainsInOrder) {
   BoundedQueue<int> q(2);
   EXPECT_TRUE(q.try_push(1));
