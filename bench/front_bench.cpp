@@ -75,8 +75,12 @@ double heap_mb() {
 // frame rate, as a robot going up and down one corridor: the map is revisited, keyframes are made
 // and culled, and the memory the map holds at the end (map_mb: the heap in use after the run, the
 // front-process still alive, less before it) should follow the keyframes kept, not those made.
+// `stop_frames` > 0 plays one pass with the middle frame shown that many more times, each with its
+// own image noise (sigma 3, seeded), as a robot waiting at a door: stop_keyframes counts the
+// keyframes made while it stands still (tracking.keyframe_still_px; a third argument 1 turns that
+// rule off, for the comparison).
 void run_front(benchmark::State& state, const char* sequence, const char* settings_name, bool mono, size_t max_frames,
-               double target_ms, int passes = 1) {
+               double target_ms, int passes = 1, size_t stop_frames = 0) {
   const auto root = data_dir() / sequence;
   if (!std::filesystem::exists(root)) return state.SkipWithError("shared sequence not found");
   const slam::io::Settings settings = shipped_settings(settings_name);
@@ -86,14 +90,31 @@ void run_front(benchmark::State& state, const char* sequence, const char* settin
   options.tracking.pose_solver = state.range(0) == 1 ? "lm" : "ceres";
   if (state.range(1) != 0) options.tracking.flow_extend = options.tracking.flow_extend_mono = state.range(1) != 2;
   if (state.range(1) == 1) options.tracking.flow_budget_ms = options.tracking.flow_budget_ms_mono = 0;
+  if (stop_frames > 0 && state.range(2) == 1) options.tracking.keyframe_still_px = 0;
   slam::io::ReaderOptions ro;
   ro.depth_factor = settings.camera.depth_map_factor;
   auto reader = slam::io::open_sequence(root, ro);
   const size_t n = std::min<size_t>(max_frames, reader->size());
   if (passes > 1 && n < 2) return state.SkipWithError("too few frames to play back and forth");
-  const size_t frames = passes > 1 ? static_cast<size_t>(passes) * (n - 1) + 1 : n;
+  const size_t stop = n / 2;  // the frame shown again during a stop
+  const size_t frames = passes > 1 ? static_cast<size_t>(passes) * (n - 1) + 1 : n + stop_frames;
   const double period = n > 1 ? (reader->timestamp(n - 1) - reader->timestamp(0)) / static_cast<double>(n - 1) : 0;
+  cv::RNG noise_rng(1);
   const auto frame_at = [&](size_t k) {
+    if (stop_frames > 0 && k > stop) {
+      const bool still = k <= stop + stop_frames;
+      slam::io::Frame f = reader->read(still ? stop : k - stop_frames);
+      if (still) {
+        cv::Mat image, noise(f.image.size(), CV_32FC(f.image.channels()));
+        f.image.convertTo(image, CV_32F);
+        noise_rng.fill(noise, cv::RNG::NORMAL, 0.0, 3.0);
+        image += noise;
+        image.convertTo(f.image, f.image.type());
+      }
+      f.index = k;
+      f.timestamp = reader->timestamp(0) + static_cast<double>(k) * period;
+      return f;
+    }
     if (passes <= 1) return reader->read(k);
     const size_t cycle = 2 * (n - 1), j = k % cycle;
     slam::io::Frame f = reader->read(j < n ? j : cycle - j);
@@ -104,7 +125,8 @@ void run_front(benchmark::State& state, const char* sequence, const char* settin
   auto vocabulary = std::make_shared<const slam::place::Vocabulary>(
       slam::place::Vocabulary::load(std::filesystem::path(WARDMAP_PROJECT_DIR) / "data/vocabulary/orb-k10l4.bin"));
   std::vector<double> seconds, extract_seconds;
-  double tracked = 0, keyframes = 0, ba_seconds = 0, mapped = 0, waited = 0, flowed = 0;
+  double tracked = 0, keyframes = 0, ba_seconds = 0, mapped = 0, waited = 0, flowed = 0, stop_keyframes = 0;
+  double mapping_seconds = 0;
   size_t max_queue = 0, kept = 0;
   double map_mb = 0;
   for (auto _ : state) {
@@ -118,11 +140,14 @@ void run_front(benchmark::State& state, const char* sequence, const char* settin
       waited += r.wait_seconds;
       tracked += r.tracked ? 1 : 0;
       keyframes += r.keyframe ? 1 : 0;
+      if (r.keyframe && i > stop && i <= stop + stop_frames) ++stop_keyframes;
       flowed += r.flow ? 1 : 0;
       max_queue = std::max(max_queue, front.mapper_queue_length());
     }
     front.finish();
     ba_seconds += front.mapper_stats().t_ba;
+    const auto& m = front.mapper_stats();
+    mapping_seconds += m.t_register + m.t_cull + m.t_triangulate + m.t_fuse + m.t_ba + m.t_cull_keyframes;
     mapped += front.mapper_stats().keyframes;
     kept += front.submap().num_keyframes();
     map_mb += heap_mb() - before_mb;
@@ -144,6 +169,10 @@ void run_front(benchmark::State& state, const char* sequence, const char* settin
   state.counters["keyframe_pct"] = 100.0 * keyframes / static_cast<double>(seconds.size());
   state.counters["keyframes_made"] = keyframes / static_cast<double>(state.iterations());
   state.counters["keyframes_kept"] = static_cast<double>(kept) / static_cast<double>(state.iterations());
+  if (stop_frames > 0) {
+    state.counters["stop_keyframes"] = stop_keyframes / static_cast<double>(state.iterations());
+    state.counters["mapping_s"] = mapping_seconds / static_cast<double>(state.iterations());  // the mapper's work in all
+  }
   state.counters["map_mb"] = map_mb / static_cast<double>(state.iterations());
   state.counters["ba_ms_per_kf"] = mapped > 0 ? 1e3 * ba_seconds / mapped : 0.0;
   state.counters["max_kf_queue"] = static_cast<double>(max_queue);
@@ -168,11 +197,18 @@ void BM_FrontKitchenRgbdBackAndForth(benchmark::State& state) {
 void BM_FrontKittiMonoBackAndForth(benchmark::State& state) {
   run_front(state, "kitti-odometry-03", "KITTI03.yaml", true, 400, 15.0, 3);
 }
+// A 10 s stop in the middle of the kitchen (300 frames): keyframes made while standing still.
+void BM_FrontKitchenRgbdStop(benchmark::State& state) { run_front(state, kKitchen, "7Scenes.yaml", false, 600, 15.0, 1, 300); }
+void BM_FrontKitchenMonoStop(benchmark::State& state) {
+  run_front(state, kKitchen, "7Scenes-colour.yaml", true, 600, 10.0, 1, 300);
+}
 BENCHMARK(BM_FrontKitchenRgbd)->ArgNames({"lm", "flow"})->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({0, 3})->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_FrontKitchenMono)->ArgNames({"lm", "flow"})->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({0, 3})->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_FrontKittiMono)->ArgNames({"lm", "flow"})->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({0, 3})->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_FrontKitchenRgbdBackAndForth)->ArgNames({"lm", "flow"})->Args({0, 0})->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_FrontKittiMonoBackAndForth)->ArgNames({"lm", "flow"})->Args({0, 0})->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_FrontKitchenRgbdStop)->ArgNames({"lm", "flow", "still_off"})->Args({0, 0, 0})->Args({0, 0, 1})->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_FrontKitchenMonoStop)->ArgNames({"lm", "flow", "still_off"})->Args({0, 0, 0})->Args({0, 0, 1})->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
 }  // namespace wardmap::bench
