@@ -33,6 +33,13 @@ fs::path wardmap_binary() {
   return ::testing::AssertionFailure() << "wardmap synth " << args << ":\n" << log;
 }
 
+// A rendered sequence's reader, its depth scaled by the sequence's settings.
+std::unique_ptr<io::SequenceReader> open_with_depth(const fs::path& seq, const io::Settings& settings) {
+  io::ReaderOptions ro;
+  ro.depth_factor = settings.camera.depth_map_factor;
+  return io::open_sequence(seq, ro);
+}
+
 }  // namespace
 
 TEST(FrontProcess, TracksASyntheticRgbdAisle) {
@@ -43,9 +50,7 @@ TEST(FrontProcess, TracksASyntheticRgbdAisle) {
 
   const io::Settings settings = io::load_settings(seq / "settings.yaml");
   const FrontOptions options = load_front_options(settings);
-  io::ReaderOptions ro;
-  ro.depth_factor = settings.camera.depth_map_factor;
-  auto reader = io::open_sequence(seq, ro);
+  auto reader = open_with_depth(seq, settings);
   ASSERT_EQ(reader->size(), 90u);
 
   FrontProcess front(options, settings.camera.camera);
@@ -140,9 +145,7 @@ TEST(FrontProcess, RelocalisesInTheSameSubmapAfterBlindFrames) {
   FrontOptions options = load_front_options(settings);
   // The jump is a teleport (2 s of motion in 0.1 s): lift the RGB-D motion limit on relocalisation.
   options.tracking.reloc_max_speed = 100;
-  io::ReaderOptions ro;
-  ro.depth_factor = settings.camera.depth_map_factor;
-  auto reader = io::open_sequence(seq, ro);
+  auto reader = open_with_depth(seq, settings);
   FrontProcess front(options, settings.camera.camera);
   front.set_vocabulary(std::make_shared<const place::Vocabulary>(
       place::Vocabulary::load(test::source_dir() / "data/vocabulary/orb-k10l4.bin")));
@@ -220,9 +223,7 @@ TEST(FrontProcess, TracksWithTheMapperOnItsOwnThread) {
   options.mapping_thread = true;
   options.tracking.flow_extend = true;
   options.tracking.flow_budget_ms = 0;  // on every frame, however slow the sanitizer makes them
-  io::ReaderOptions ro;
-  ro.depth_factor = settings.camera.depth_map_factor;
-  auto reader = io::open_sequence(seq, ro);
+  auto reader = open_with_depth(seq, settings);
   FrontProcess front(options, settings.camera.camera);
   size_t max_queue = 0;
   for (size_t i = 0; i < reader->size(); ++i) {
@@ -249,9 +250,7 @@ TEST(FrontProcess, FlowFollowsThePointsTheDescriptorSearchesMiss) {
   const fs::path seq = test::scratch_dir() / "aisle_flow";
   ASSERT_TRUE(render(seq, "--scenario aisle_straight --variant quick --seed 2 --frames 90"));
   const io::Settings settings = io::load_settings(seq / "settings.yaml");
-  io::ReaderOptions ro;
-  ro.depth_factor = settings.camera.depth_map_factor;
-  auto reader = io::open_sequence(seq, ro);
+  auto reader = open_with_depth(seq, settings);
   struct Run {
     double ate_se3 = 0;
     double observations_per_point = 0;
@@ -410,9 +409,7 @@ TEST(FrontProcess, RgbdCameraStandingStillMakesNoKeyframes) {
   const fs::path seq = test::scratch_dir() / "aisle_stop";
   ASSERT_TRUE(render(seq, "--scenario aisle_straight --variant slow --seed 1 --frames 60"));
   const io::Settings settings = io::load_settings(seq / "settings.yaml");
-  io::ReaderOptions ro;
-  ro.depth_factor = settings.camera.depth_map_factor;
-  auto reader = io::open_sequence(seq, ro);
+  auto reader = open_with_depth(seq, settings);
   const Trajectory& gt = reader->ground_truth();
   ASSERT_EQ(gt.size(), 60u);
   // Frame 30 shown still_frames times; frames renumbered at 30 Hz.
