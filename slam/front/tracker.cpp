@@ -1,6 +1,7 @@
 #include "slam/front/tracker.h"
 
 #include <algorithm>
+#include <cmath>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/video/tracking.hpp>
@@ -114,14 +115,14 @@ TrackingOutcome Tracker::track(Frame& frame) {
   out.tracked = ok;
   if (ok) {
     velocity_ = frame.pose_cw() * last_frame_->pose_cw().inverse();
-    const KeyFrameEvidence ev = evidence(frame, out.inliers);
-    if (need_new_keyframe(ev, options_.tracking)) {
+    KeyFrameEvidence ev = evidence(frame, out.inliers);
+    if (wants_keyframe(frame, ev)) {
       insert_keyframe(frame);
       out.keyframe = true;
     } else if (!ev.mapper_idle && mapper_.threaded()) {
       KeyFrameEvidence if_idle = ev;
       if_idle.mapper_idle = true;
-      if (need_new_keyframe(if_idle, options_.tracking)) mapper_.interrupt_ba();  // a keyframe next frame
+      if (wants_keyframe(frame, if_idle)) mapper_.interrupt_ba();  // a keyframe next frame
     }
     frame.drop_outliers();
     last_frame_ = std::make_unique<Frame>(frame);
@@ -546,6 +547,15 @@ double Tracker::view_motion_px(const Frame& frame, const KeyFrame& keyframe) con
   return median_displacement(in_keyframe, in_frame);
 }
 
+bool Tracker::wants_keyframe(const Frame& frame, KeyFrameEvidence& e) const {
+  const bool if_moved = need_new_keyframe(e, options_.tracking);
+  KeyFrameEvidence unmoved = e;
+  unmoved.view_motion_px = 0;
+  if (if_moved == need_new_keyframe(unmoved, options_.tracking) || !last_keyframe_) return if_moved;
+  if (std::isinf(e.view_motion_px)) e.view_motion_px = view_motion_px(frame, *last_keyframe_);
+  return need_new_keyframe(e, options_.tracking);
+}
+
 KeyFrameEvidence Tracker::evidence(const Frame& frame, int inliers) const {
   KeyFrameEvidence e;
   e.frames_since_keyframe = static_cast<int>(frame.id() - last_keyframe_frame_);
@@ -568,7 +578,6 @@ KeyFrameEvidence Tracker::evidence(const Frame& frame, int inliers) const {
   e.mapper_keyframes_waiting = mapper_.queued() > 0;
   const double period = last_frame_ ? frame.timestamp() - last_frame_->timestamp() : 0.0;
   e.deferred_gap_seconds = frame.timestamp() - last_keyframe_time_ + period;
-  if (options_.tracking.keyframe_still_px > 0 && last_keyframe_) e.view_motion_px = view_motion_px(frame, *last_keyframe_);
   return e;
 }
 

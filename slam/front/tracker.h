@@ -88,7 +88,11 @@ class Tracker {
   // Makes `kf`, created from `frame`, the reference and newest keyframe, and queues it for the
   // place database.
   void adopt_keyframe(Frame& frame, const std::shared_ptr<KeyFrame>& kf);
+  // The evidence for need_new_keyframe, without the view's motion (view_motion_px below).
   KeyFrameEvidence evidence(const Frame& frame, int inliers) const;
+  // need_new_keyframe on `e`, measuring the view's motion into it only when the answer depends on
+  // it (tracking.keyframe_still_px): most frames skip those few hundred projections.
+  bool wants_keyframe(const Frame& frame, KeyFrameEvidence& e) const;
   // Median pixel motion of the frame's tracked points between the keyframe's pose and the frame's
   // (tracking.keyframe_still_px); infinite without a tracked point in front of both.
   double view_motion_px(const Frame& frame, const KeyFrame& keyframe) const;
