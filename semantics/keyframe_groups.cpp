@@ -6,11 +6,13 @@ namespace wardmap::semantics {
 
 bool KeyframeSelector::accept(const slam::SE3& T) {
   ++since_last_;
-  bool take = !has_last_ || since_last_ >= options_.max_interval;
+  bool take = !has_last_;
   if (!take) {
     const slam::SE3 d = last_.inverse() * T;
-    take = d.translation().norm() >= options_.min_translation ||
-           slam::rotation_angle(d.rotation()) * 180.0 / M_PI >= options_.min_rotation_deg;
+    const double moved = d.translation().norm(), turned = slam::rotation_angle(d.rotation()) * 180.0 / M_PI;
+    const bool still = moved < options_.still_translation && turned < options_.still_rotation_deg;
+    take = moved >= options_.min_translation || turned >= options_.min_rotation_deg ||
+           (since_last_ >= options_.max_interval && !still);
   }
   if (take) {
     has_last_ = true;

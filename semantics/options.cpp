@@ -23,6 +23,8 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(keyframes.min_translation, 0, 10, "keyframes.min_translation");
   c(keyframes.min_rotation_deg, 0, 180, "keyframes.min_rotation_deg");
   c(keyframes.max_interval, 1, 10000, "keyframes.max_interval");
+  c(keyframes.still_translation, 0, 10, "keyframes.still_translation");
+  c(keyframes.still_rotation_deg, 0, 180, "keyframes.still_rotation_deg");
   c(measurement.box_shrink, 0, 0.45, "measurement.box_shrink");
   c(measurement.target_samples, 10, 1e6, "measurement.target_samples");
   c(measurement.cluster_support, 0.01, 1, "measurement.cluster_support");
@@ -113,6 +115,8 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   kfk.read("min_translation", o.keyframes.min_translation);
   kfk.read("min_rotation_deg", o.keyframes.min_rotation_deg);
   kfk.read("max_interval", o.keyframes.max_interval);
+  kfk.read("still_translation", o.keyframes.still_translation);
+  kfk.read("still_rotation_deg", o.keyframes.still_rotation_deg);
   mk.read("box_shrink", o.measurement.box_shrink);
   mk.read("target_samples", o.measurement.target_samples);
   mk.read("cluster_support", o.measurement.cluster_support);

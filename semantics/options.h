@@ -18,11 +18,14 @@
 namespace wardmap::semantics {
 
 // Keyframes taken from known poses (--poses gt): a new keyframe when the camera has moved or turned
-// enough since the last one, or after max_interval frames.
+// enough since the last one, or after max_interval frames unless it stands still: moved less than
+// still_translation and turned less than still_rotation_deg since the last keyframe (both 0: off).
 struct KeyframeSelectionOptions {
   double min_translation = 0.10;  // metres
   double min_rotation_deg = 5.0;
   int max_interval = 10;          // frames
+  double still_translation = 0.01;  // metres
+  double still_rotation_deg = 0.5;
 };
 
 // Object measurement from depth inside the detection box (Assoc. Eq. 1 "Pose").

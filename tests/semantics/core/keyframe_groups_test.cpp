@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/semantics/core/options_error.h"
+
 namespace wardmap::semantics {
 namespace {
 
@@ -43,8 +45,40 @@ TEST(KeyframeSelector, MotionOrIntervalMakesAKeyframe) {
   EXPECT_TRUE(s.accept(slam::SE3(Eigen::Quaterniond::Identity(), Eigen::Vector3d(0.11, 0, 0))));
   const slam::SE3 turned(Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitY())), Eigen::Vector3d(0.11, 0, 0));
   EXPECT_TRUE(s.accept(turned));  // 5.7 degrees
-  for (int i = 0; i < 4; ++i) EXPECT_FALSE(s.accept(turned));
-  EXPECT_TRUE(s.accept(turned));  // fifth frame since the last keyframe
+  const slam::SE3 crept(turned.rotation(), Eigen::Vector3d(0.13, 0, 0));  // 2 cm on: not standing still
+  for (int i = 0; i < 4; ++i) EXPECT_FALSE(s.accept(crept));
+  EXPECT_TRUE(s.accept(crept));  // fifth frame since the last keyframe
+}
+
+// A camera standing still (a robot waiting at a lift) makes no keyframe from the interval rule:
+// each would detect the same view again. Creeping on, it makes one once it has moved
+// still_translation since the last keyframe; 0 and 0 turn the rule off.
+TEST(KeyframeSelector, StandingStillMakesNoIntervalKeyframe) {
+  KeyframeSelectionOptions o;
+  o.max_interval = 5;  // still_translation 0.01 m, still_rotation_deg 0.5
+  const auto at = [](double x, double yaw_deg) {
+    return slam::SE3(Eigen::Quaterniond(Eigen::AngleAxisd(yaw_deg * M_PI / 180, Eigen::Vector3d::UnitY())),
+                     Eigen::Vector3d(x, 0, 0));
+  };
+  KeyframeSelector s(o);
+  EXPECT_TRUE(s.accept(at(0, 0)));
+  for (int i = 0; i < 20; ++i) EXPECT_FALSE(s.accept(at(0.002, 0.1))) << "frame " << i + 1;
+  EXPECT_TRUE(s.accept(at(0.012, 0.1)));  // 1.2 cm from the last keyframe, 20 frames on
+  for (int i = 0; i < 4; ++i) EXPECT_FALSE(s.accept(at(0.012, 0.1)));
+  EXPECT_FALSE(s.accept(at(0.012, 0.1)));  // the fifth frame, still
+  EXPECT_TRUE(s.accept(at(0.012, 0.7)));   // turned 0.6 degrees: no longer still
+
+  o.still_translation = 0;
+  o.still_rotation_deg = 0;
+  KeyframeSelector off(o);
+  EXPECT_TRUE(off.accept(at(0, 0)));
+  for (int i = 0; i < 4; ++i) EXPECT_FALSE(off.accept(at(0, 0)));
+  EXPECT_TRUE(off.accept(at(0, 0)));  // the fifth frame, as before the rule
+}
+
+TEST(KeyframeSelector, InvalidStillLimitsNameTheKey) {
+  test::expect_load_error_names("keyframes: {still_translation: -0.01}", "semantics.keyframes.still_translation");
+  test::expect_load_error_names("keyframes: {still_rotation_deg: 200}", "semantics.keyframes.still_rotation_deg");
 }
 
 }  // namespace
