@@ -146,8 +146,7 @@ void run_front(benchmark::State& state, const char* sequence, const char* settin
     }
     front.finish();
     ba_seconds += front.mapper_stats().t_ba;
-    const auto& m = front.mapper_stats();
-    mapping_seconds += m.t_register + m.t_cull + m.t_triangulate + m.t_fuse + m.t_ba + m.t_cull_keyframes;
+    mapping_seconds += front.mapper_stats().total_seconds();
     mapped += front.mapper_stats().keyframes;
     kept += front.submap().num_keyframes();
     map_mb += heap_mb() - before_mb;

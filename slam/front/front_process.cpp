@@ -40,10 +40,7 @@ FrontProcess::~FrontProcess() { mapper_.stop(); }
 
 void FrontProcess::finish() { mapper_.stop(); }
 
-double FrontProcess::mapping_seconds_total() const {
-  const LocalMapperStats& ms = mapper_.stats();
-  return ms.t_register + ms.t_cull + ms.t_triangulate + ms.t_fuse + ms.t_ba + ms.t_cull_keyframes;
-}
+double FrontProcess::mapping_seconds_total() const { return mapper_.stats().total_seconds(); }
 
 FrameResult FrontProcess::process(const io::Frame& in) {
   const auto start = std::chrono::steady_clock::now();

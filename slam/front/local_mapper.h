@@ -35,6 +35,8 @@ struct LocalMapperStats {
   LocalBAResult last_ba;
   // Wall time spent per stage (seconds, summed over keyframes).
   double t_register = 0, t_cull = 0, t_triangulate = 0, t_fuse = 0, t_ba = 0, t_cull_keyframes = 0;
+  // All stages together: the mapper's work.
+  double total_seconds() const { return t_register + t_cull + t_triangulate + t_fuse + t_ba + t_cull_keyframes; }
 };
 
 class LocalMapper {
