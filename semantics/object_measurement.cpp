@@ -170,7 +170,7 @@ struct OccluderMask {
   double far_depth = -1;  // > 0: every pixel of the image box no deeper than this (camera z) is hidden
 };
 
-std::vector<OccluderMask> occluder_masks(const std::vector<Occluder>& occluders, double inflate,
+std::vector<OccluderMask> occluder_masks(const std::vector<Occluder>& occluders, double inflate, double support_top_inflate,
                                         const slam::SE3& T_wc, const std::string& far_end, bool box_mask_to_far_end) {
   std::vector<OccluderMask> masks;
   for (const auto& o : occluders) {
@@ -180,6 +180,9 @@ std::vector<OccluderMask> occluder_masks(const std::vector<Occluder>& occluders,
     const bool to_far_end = o.pose && (!o.box_masked || box_mask_to_far_end);
     OccluderMask m{o.box, !to_far_end, {}, Eigen::Vector3d::Zero()};
     if (to_far_end) m.world_to_box = o.pose->pose.inverse(), m.half_size = 0.5 * o.pose->size.array() + inflate;
+    // A support's top is its measured top surface: what rises just above it (a chair's back behind a
+    // table) is not the support's.
+    if (to_far_end && o.support) m.half_size(2) = 0.5 * o.pose->size(2) + support_top_inflate;
     if (to_far_end && (o.box_masked || far_end == "all" || (far_end == "same_class" && o.same_class))) {
       // The deepest corner: the centre's depth plus each half axis's reach along the optical axis.
       const slam::SE3 T_cb = T_wc.inverse() * o.pose->pose;
@@ -358,7 +361,7 @@ std::optional<ObjectPose> measure_pose(const cv::Mat& depth, const slam::Pinhole
   }
   // Hidden at the bottom by a nearer detection: completed as a bottom cut is.
   const std::vector<OccluderMask> masks =
-      occluder_masks(occluders, o.occluder_inflate, T_wc, o.mask_to_far_end, o.box_mask_to_far_end);
+      occluder_masks(occluders, o.occluder_inflate, o.support_top_inflate, T_wc, o.mask_to_far_end, o.box_mask_to_far_end);
   if (sized && o.occluded_bottom_share <= 1 && bottom_occluded(depth, cam, T_wc, box, masks, o.occluded_bottom_share))
     cut.bottom = true;
   const bool completes = sized && o.complete_depth_with_class_size;
@@ -815,7 +818,7 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
           box_front_share(depth, boxes[next], options.measurement) <= options.measurement.support_front_share)
         continue;
       occluders.push_back({boxes[j], done[j] ? poses[j] : std::nullopt, labels[j] == labels[next],
-                           options.box_masked_classes.count(labels[j]) > 0});
+                           options.box_masked_classes.count(labels[j]) > 0, supports[j]});
     }
     poses[next] = measure_pose_from_depth(depth, camera, T_wc, boxes[next], up, labels[next], options, occluders);
     if (side_cut_poses && !poses[next] && nearer[next].empty())

@@ -48,6 +48,7 @@ struct Occluder {
   std::optional<ObjectPose> pose;
   bool same_class = false;  // of the measured detection's class (measurement.mask_to_far_end)
   bool box_masked = false;  // of a box_masked_classes class
+  bool support = false;     // of a support_classes class (measurement.support_top_inflate)
 };
 
 // Assoc. Eq. 1 "Pose": the object's pose and size from the depth inside its box. Points are taken

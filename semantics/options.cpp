@@ -32,6 +32,7 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(measurement.occluder_margin, 0, 10, "measurement.occluder_margin");
   c(measurement.occluder_footprint_px, 0, 10000, "measurement.occluder_footprint_px");
   c(measurement.occluder_inflate, 0, 1, "measurement.occluder_inflate");
+  c(measurement.support_top_inflate, 0, 1, "measurement.support_top_inflate");
   c(measurement.thin_support, 0.001, 1, "measurement.thin_support");
   c(measurement.flat_ratio, 0, 1, "measurement.flat_ratio");
   c(measurement.occluded_bottom_share, 0, 2, "measurement.occluded_bottom_share");
@@ -124,6 +125,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   mk.read("occluder_margin", o.measurement.occluder_margin);
   mk.read("occluder_footprint_px", o.measurement.occluder_footprint_px);
   mk.read("occluder_inflate", o.measurement.occluder_inflate);
+  mk.read("support_top_inflate", o.measurement.support_top_inflate);
   mk.read("support_containment", o.measurement.support_containment);
   mk.read("support_area_ratio", o.measurement.support_area_ratio);
   mk.read("support_front_share", o.measurement.support_front_share);

@@ -42,6 +42,8 @@ struct MeasurementOptions {
   double occluder_footprint_px = 8;  // or one whose box reaches this much lower in the image
   double occluder_inflate = 0.1;     // margin (m) of a measured occluder's 3-D box when masking its pixels
                                      // (its 5-95 % extents fall short of its ends)
+  double support_top_inflate = 0.03;  // a support's (a table's) vertical margin instead: its top is the
+                                      // measured top surface, not short of it (depth noise only)
   double support_containment = 0.8;  // a box holding this share of mine, and
   double support_area_ratio = 4.0;   // this many times larger, is a support, not an occluder
   // A support without a pose that holds a box hides none of its pixels when at most this share of
