@@ -168,6 +168,8 @@ struct OccluderMask {
   slam::SE3 world_to_box;
   Eigen::Vector3d half_size;
   double far_depth = -1;  // > 0: every pixel of the image box no deeper than this (camera z) is hidden
+  bool same_class = false;  // the occluder is of the measured detection's class
+  double box_far_depth = -1;  // the deepest corner of its inflated 3-D box (camera z), when measured
 };
 
 std::vector<OccluderMask> occluder_masks(const std::vector<Occluder>& occluders, double inflate, double support_top_inflate,
@@ -183,26 +185,38 @@ std::vector<OccluderMask> occluder_masks(const std::vector<Occluder>& occluders,
     // A support's top is its measured top surface: what rises just above it (a chair's back behind a
     // table) is not the support's.
     if (to_far_end && o.support) m.half_size(2) = 0.5 * o.pose->size(2) + support_top_inflate;
-    if (to_far_end && (o.box_masked || far_end == "all" || (far_end == "same_class" && o.same_class))) {
+    m.same_class = o.same_class;
+    if (to_far_end) {
       // The deepest corner: the centre's depth plus each half axis's reach along the optical axis.
       const slam::SE3 T_cb = T_wc.inverse() * o.pose->pose;
-      m.far_depth = T_cb.translation().z() + T_cb.rotation_matrix().row(2).cwiseAbs().dot(m.half_size);
+      m.box_far_depth = T_cb.translation().z() + T_cb.rotation_matrix().row(2).cwiseAbs().dot(m.half_size);
     }
+    if (to_far_end && (o.box_masked || far_end == "all" || (far_end == "same_class" && o.same_class)))
+      m.far_depth = m.box_far_depth;
     masks.push_back(m);
   }
   return masks;
 }
 
-// Whether the world point of pixel (x, y) is hidden by one of the occluders.
-bool hidden_by(const std::vector<OccluderMask>& masks, int x, int y, const Eigen::Vector3d& p_world, double z = -1) {
+// Whether the world point of pixel (x, y) is hidden by one of the occluders; `inside_same_class`,
+// when given, tells whether the measured 3-D box of an occluder of the detection's class holds it.
+bool hidden_by(const std::vector<OccluderMask>& masks, int x, int y, const Eigen::Vector3d& p_world, double z = -1,
+               bool* inside_same_class = nullptr) {
+  bool hidden = false;
   for (const auto& m : masks) {
     const auto& b = m.box;
     if (x < b(0) || x > b(2) || y < b(1) || y > b(3)) continue;
-    if (m.by_box) return true;
-    if (m.far_depth > 0 && z > 0 && z <= m.far_depth) return true;
-    if (((m.world_to_box * p_world).cwiseAbs().array() <= m.half_size.array()).all()) return true;
+    if (m.by_box) {
+      hidden = true;
+    } else if (((m.world_to_box * p_world).cwiseAbs().array() <= m.half_size.array()).all()) {
+      hidden = true;
+      if (inside_same_class && m.same_class) *inside_same_class = true;
+    } else if (m.far_depth > 0 && z > 0 && z <= m.far_depth) {
+      hidden = true;
+    }
+    if (hidden && (!inside_same_class || *inside_same_class)) return true;
   }
-  return false;
+  return hidden;
 }
 
 // Where the ray through a pixel meets the plane through on_plane with the given normal (none when
@@ -338,7 +352,7 @@ bool surface_reaches_bottom_border(const cv::Mat& depth, const slam::PinholeCame
 std::optional<ObjectPose> measure_pose(const cv::Mat& depth, const slam::PinholeCamera& cam, const slam::SE3& T_wc,
                                        const Eigen::Vector4d& box, const Eigen::Vector3d& up, const std::string& label,
                                        const SemanticOptions& options, const std::vector<Occluder>& occluders,
-                                       bool thin_side_cut_as_uncut) {
+                                       bool thin_side_cut_as_uncut, bool* duplicate = nullptr) {
   const MeasurementOptions& o = options.measurement;
   if (depth.empty() || depth.type() != CV_32F) return std::nullopt;
   const double w = box(2) - box(0), h = box(3) - box(1);
@@ -386,13 +400,19 @@ std::optional<ObjectPose> measure_pose(const cv::Mat& depth, const slam::Pinhole
     int x, y;           // image column and row
   };
   std::vector<Sample> samples;
+  int valid = 0, inside_same_class = 0;
   for (int y = y0; y <= y1; y += stride) {
     const float* row = depth.ptr<float>(y);
     for (int x = x0; x <= x1; x += column_stride) {
       const double z = row[x];
       if (!(z >= o.min_depth && z <= o.max_depth)) continue;
+      ++valid;
       const Eigen::Vector3d p = T_wc * (cam.unproject(Eigen::Vector2d(x, y)) * z);
-      if (hidden_by(masks, x, y, p, z)) continue;
+      bool inside = false;
+      if (hidden_by(masks, x, y, p, z, &inside)) {
+        inside_same_class += inside;
+        continue;
+      }
       samples.push_back({z, p, x, y});
     }
   }
@@ -430,6 +450,19 @@ std::optional<ObjectPose> measure_pose(const cv::Mat& depth, const slam::Pinhole
   }
   if (end - begin < need) return std::nullopt;
   if (begin >= end) return std::nullopt;
+  // Most of the box lies inside the measured 3-D box of a nearer detection of its class, and what is
+  // left begins more than half the class's depth behind that box: the background seen through that
+  // object, detected a second time (a chair's back inside the whole chair's box, seen through its
+  // slats). Another object of the class hidden behind it would stand next to it.
+  if (inside_same_class > o.max_inside_same_class_share * valid) {
+    double far = -1;
+    for (const auto& m : masks)
+      if (m.same_class) far = std::max(far, m.box_far_depth);
+    if (far > 0 && samples[begin].z > far + 0.5 * band) {
+      if (duplicate) *duplicate = true;
+      return std::nullopt;
+    }
+  }
   std::vector<Eigen::Vector3d> world;
   world.reserve(end - begin);
   for (size_t i = begin; i < end; ++i) world.push_back(samples[i].p);
@@ -785,10 +818,12 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
                                                               const std::vector<Eigen::Vector4d>& boxes,
                                                               const std::vector<std::string>& labels,
                                                               const Eigen::Vector3d& up, const SemanticOptions& options,
-                                                              std::vector<std::optional<ObjectPose>>* side_cut_poses) {
+                                                              std::vector<std::optional<ObjectPose>>* side_cut_poses,
+                                                              std::vector<bool>* duplicates) {
   const size_t n = boxes.size();
   std::vector<std::optional<ObjectPose>> poses(n);
   if (side_cut_poses) side_cut_poses->assign(n, std::nullopt);
+  if (duplicates) duplicates->assign(n, false);
   if (depth.empty()) return poses;
   std::vector<bool> supports(n);
   for (size_t i = 0; i < n; ++i) supports[i] = options.support_classes.count(labels[i]) > 0;
@@ -820,7 +855,9 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
       occluders.push_back({boxes[j], done[j] ? poses[j] : std::nullopt, labels[j] == labels[next],
                            options.box_masked_classes.count(labels[j]) > 0, supports[j]});
     }
-    poses[next] = measure_pose_from_depth(depth, camera, T_wc, boxes[next], up, labels[next], options, occluders);
+    bool duplicate = false;
+    poses[next] = measure_pose(depth, camera, T_wc, boxes[next], up, labels[next], options, occluders, false, &duplicate);
+    if (duplicates) (*duplicates)[next] = duplicate;
     if (side_cut_poses && !poses[next] && nearer[next].empty())
       (*side_cut_poses)[next] =
           measure_thin_side_cut(depth, camera, T_wc, boxes[next], up, labels[next], options, occluders);

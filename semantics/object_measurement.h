@@ -59,7 +59,8 @@ struct Occluder {
 // only from the front is pushed back by half the missing depth of the class's typical size, and a
 // box cut off by the image's top or bottom border is completed to the class's height from its
 // visible end, unless a long class shows its top there (seen from above, the cut hides its near
-// end). Returns no pose rather than a wrong one (a box cut at the left or right).
+// end). Returns no pose rather than a wrong one (a box cut at the left or right; a box lying mostly in
+// a nearer same-class occluder's measured box, seen through to what stands well behind it).
 std::optional<ObjectPose> measure_pose_from_depth(const cv::Mat& depth, const slam::PinholeCamera& camera,
                                                   const slam::SE3& T_wc, const Eigen::Vector4d& box,
                                                   const Eigen::Vector3d& up, const std::string& label,
@@ -115,10 +116,14 @@ void drop_coincident_poses(std::vector<std::optional<ObjectPose>>& poses, const 
 // without the pixels of the nearer ones, masked by their measured 3-D boxes when they have one.
 // With `side_cut_poses`, also each unplaced thin class's side-cut box that no nearer detection
 // overlaps, measured as if uncut (measure_thin_side_cut; empty for the others); they mask nothing.
+// With `duplicates`, which detections are a nearer detection of their class detected again and seen
+// through (measurement.max_inside_same_class_share: a chair's back inside the whole chair's box,
+// placed on the wall behind its slats); they get no pose.
 std::vector<std::optional<ObjectPose>> measure_keyframe_poses(
     const cv::Mat& depth, const slam::PinholeCamera& camera, const slam::SE3& T_wc,
     const std::vector<Eigen::Vector4d>& boxes, const std::vector<std::string>& labels, const Eigen::Vector3d& up,
-    const SemanticOptions& options, std::vector<std::optional<ObjectPose>>* side_cut_poses = nullptr);
+    const SemanticOptions& options, std::vector<std::optional<ObjectPose>>* side_cut_poses = nullptr,
+    std::vector<bool>* duplicates = nullptr);
 
 // The world's up direction from camera poses, which seldom roll but may look down: orthogonal to
 // their right (x) axes once those span a plane (the camera has turned), on the side of the mean of

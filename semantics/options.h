@@ -51,6 +51,10 @@ struct MeasurementOptions {
   // border: 0 on 7-Scenes), else its whole box, as any unplaced occluder.
   double support_front_share = 0.1;  // measurement.support_front_share
   double thin_support = 0.08;     // thin classes: share of the points the nearest window must hold
+  // More than this share of the trimmed box's depths inside the measured 3-D box of a nearer
+  // detection of its class, the rest beginning more than half the class's depth behind that box: the
+  // same object detected again and seen through (no measurement is made). Above 1: off.
+  double max_inside_same_class_share = 0.5;
   double occluded_bottom_share = 0.5;  // nearer detections' pixels under this share of my box's bottom edge:
                                        // completed as a bottom cut (above 1: never)
   // A bottom cut (border or occluder) is completed downwards only when the lowest rows of the

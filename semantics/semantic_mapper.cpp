@@ -50,8 +50,11 @@ void SemanticMapper::add_keyframe(const KeyframeInput& kf) {
 
   t0 = std::chrono::steady_clock::now();
   std::vector<std::optional<ObjectPose>> side_cut_poses;
-  auto poses = measure_keyframe_poses(kf.depth, camera_, kf.T_wc, boxes, labels, up, options_, &side_cut_poses);
+  std::vector<bool> duplicates;
+  auto poses = measure_keyframe_poses(kf.depth, camera_, kf.T_wc, boxes, labels, up, options_, &side_cut_poses,
+                                      &duplicates);
   for (size_t i = 0; i < dets.size(); ++i) {
+    if (duplicates[i]) continue;  // one object detected twice: one measurement
     ObjectMeasurement m;
     m.id = static_cast<int>(measurements_.size());
     m.keyframe = rec.index;
