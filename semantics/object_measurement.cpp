@@ -450,14 +450,17 @@ std::optional<ObjectPose> measure_pose(const cv::Mat& depth, const slam::Pinhole
   }
   if (end - begin < need) return std::nullopt;
   if (begin >= end) return std::nullopt;
-  // Most of the box lies inside the measured 3-D box of a nearer detection of its class, and what is
-  // left begins more than half the class's depth behind that box: the background seen through that
-  // object, detected a second time (a chair's back inside the whole chair's box, seen through its
-  // slats). Another object of the class hidden behind it would stand next to it.
+  // Most of the box lies inside the measured 3-D box of a nearer detection of its class whose image
+  // box holds it (duplicate_containment), and what is left begins more than half the class's depth
+  // behind that 3-D box: the background seen through that object, detected a second time (a chair's
+  // back inside the whole chair's box, seen through its slats). Another object of the class hidden
+  // behind it would stand next to it, or show above it (a wheelchair far behind another).
   if (inside_same_class > o.max_inside_same_class_share * valid) {
     double far = -1;
+    const double area = w * h;
     for (const auto& m : masks)
-      if (m.same_class) far = std::max(far, m.box_far_depth);
+      if (m.same_class && area > 0 && box_intersection(box, m.box) / area >= o.duplicate_containment)
+        far = std::max(far, m.box_far_depth);
     if (far > 0 && samples[begin].z > far + 0.5 * band) {
       if (duplicate) *duplicate = true;
       return std::nullopt;

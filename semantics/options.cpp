@@ -35,6 +35,7 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(measurement.support_top_inflate, 0, 1, "measurement.support_top_inflate");
   c(measurement.thin_support, 0.001, 1, "measurement.thin_support");
   c(measurement.max_inside_same_class_share, 0, 2, "measurement.max_inside_same_class_share");
+  c(measurement.duplicate_containment, 0, 1, "measurement.duplicate_containment");
   c(measurement.flat_ratio, 0, 1, "measurement.flat_ratio");
   c(measurement.occluded_bottom_share, 0, 2, "measurement.occluded_bottom_share");
   c(measurement.bottom_face_band, 0, 1, "measurement.bottom_face_band");
@@ -132,6 +133,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   mk.read("support_front_share", o.measurement.support_front_share);
   mk.read("thin_support", o.measurement.thin_support);
   mk.read("max_inside_same_class_share", o.measurement.max_inside_same_class_share);
+  mk.read("duplicate_containment", o.measurement.duplicate_containment);
   mk.read("flat_ratio", o.measurement.flat_ratio);
   mk.read("occluded_bottom_share", o.measurement.occluded_bottom_share);
   mk.read("bottom_face_band", o.measurement.bottom_face_band);

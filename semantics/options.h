@@ -55,6 +55,7 @@ struct MeasurementOptions {
   // detection of its class, the rest beginning more than half the class's depth behind that box: the
   // same object detected again and seen through (no measurement is made). Above 1: off.
   double max_inside_same_class_share = 0.5;
+  double duplicate_containment = 0.8;  // and that detection's image box holding this share of its box
   double occluded_bottom_share = 0.5;  // nearer detections' pixels under this share of my box's bottom edge:
                                        // completed as a bottom cut (above 1: never)
   // A bottom cut (border or occluder) is completed downwards only when the lowest rows of the

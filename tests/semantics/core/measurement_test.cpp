@@ -432,6 +432,15 @@ TEST(Measurement, SameClassDetectionSeenThroughANearerOneIsADuplicate) {
   };
   EXPECT_NEAR(behind(2.8), 2.8, 0.05);
   EXPECT_EQ(behind(3.0), -1.0);
+  // The chair's image box must hold the back's (duplicate_containment): a box sticking out of it is
+  // another object (a wheelchair far behind another shows above it).
+  o.measurement.duplicate_containment = 1.0;
+  const std::vector<Eigen::Vector4d> wider = {boxes[0], Eigen::Vector4d(250, 190, 391, 270)};
+  poses = measure_keyframe_poses(chair(4.0), camera(), slam::SE3(), wider, labels, up, o, nullptr, &duplicates);
+  ASSERT_TRUE(poses[1]);
+  EXPECT_NEAR(poses[1]->pose.translation().z(), 4.0, 0.05);
+  EXPECT_EQ(duplicates, std::vector<bool>({false, false}));
+  o.measurement.duplicate_containment = 0.8;
   // Off: placed on the wall.
   o.measurement.max_inside_same_class_share = 2;
   poses = measure_keyframe_poses(chair(4.0), camera(), slam::SE3(), boxes, labels, up, o, nullptr, &duplicates);
@@ -444,6 +453,7 @@ TEST(Measurement, SameClassDetectionSeenThroughANearerOneIsADuplicate) {
                    0.7);
   test::expect_load_error_names("measurement: {max_inside_same_class_share: -1}",
                                 "semantics.measurement.max_inside_same_class_share");
+  test::expect_load_error_names("measurement: {duplicate_containment: 1.5}", "semantics.measurement.duplicate_containment");
 }
 
 // A pole (a box-masked class: an open frame) stands in front of a cabinet, its shaft at 2.5 m and
