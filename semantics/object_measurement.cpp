@@ -452,16 +452,19 @@ std::optional<ObjectPose> measure_pose(const cv::Mat& depth, const slam::Pinhole
   if (begin >= end) return std::nullopt;
   // Most of the box lies inside the measured 3-D box of a nearer detection of its class whose image
   // box holds it (duplicate_containment), and what is left begins more than half the class's depth
-  // behind that 3-D box: the background seen through that object, detected a second time (a chair's
-  // back inside the whole chair's box, seen through its slats). Another object of the class hidden
-  // behind it would stand next to it, or show above it (a wheelchair far behind another).
+  // behind that 3-D box, all in one class-deep window (duplicate_rest_window_share): the background
+  // seen through that object, detected a second time (a chair's back inside the whole chair's box,
+  // seen through its slats to the cabinet). Another object of the class hidden behind it would stand
+  // next to it, show above it (a wheelchair far behind another), or show itself and what stands
+  // around it at other depths (the far chairs of a row seen end on).
   if (inside_same_class > o.max_inside_same_class_share * valid) {
     double far = -1;
     const double area = w * h;
     for (const auto& m : masks)
       if (m.same_class && area > 0 && box_intersection(box, m.box) / area >= o.duplicate_containment)
         far = std::max(far, m.box_far_depth);
-    if (far > 0 && samples[begin].z > far + 0.5 * band) {
+    const bool one_surface = static_cast<double>(end - begin) >= o.duplicate_rest_window_share * samples.size();
+    if (far > 0 && samples[begin].z > far + 0.5 * band && one_surface) {
       if (duplicate) *duplicate = true;
       return std::nullopt;
     }

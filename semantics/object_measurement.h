@@ -117,8 +117,8 @@ void drop_coincident_poses(std::vector<std::optional<ObjectPose>>& poses, const 
 // With `side_cut_poses`, also each unplaced thin class's side-cut box that no nearer detection
 // overlaps, measured as if uncut (measure_thin_side_cut; empty for the others); they mask nothing.
 // With `duplicates`, which detections are a nearer detection of their class detected again and seen
-// through (measurement.max_inside_same_class_share: a chair's back inside the whole chair's box,
-// placed on the wall behind its slats); they get no pose.
+// through (measurement.max_inside_same_class_share, duplicate_containment, duplicate_rest_window_share:
+// a chair's back inside the whole chair's box, placed on the wall behind its slats); they get no pose.
 std::vector<std::optional<ObjectPose>> measure_keyframe_poses(
     const cv::Mat& depth, const slam::PinholeCamera& camera, const slam::SE3& T_wc,
     const std::vector<Eigen::Vector4d>& boxes, const std::vector<std::string>& labels, const Eigen::Vector3d& up,

@@ -36,6 +36,7 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(measurement.thin_support, 0.001, 1, "measurement.thin_support");
   c(measurement.max_inside_same_class_share, 0, 2, "measurement.max_inside_same_class_share");
   c(measurement.duplicate_containment, 0, 1, "measurement.duplicate_containment");
+  c(measurement.duplicate_rest_window_share, 0, 1, "measurement.duplicate_rest_window_share");
   c(measurement.flat_ratio, 0, 1, "measurement.flat_ratio");
   c(measurement.occluded_bottom_share, 0, 2, "measurement.occluded_bottom_share");
   c(measurement.bottom_face_band, 0, 1, "measurement.bottom_face_band");
@@ -134,6 +135,7 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   mk.read("thin_support", o.measurement.thin_support);
   mk.read("max_inside_same_class_share", o.measurement.max_inside_same_class_share);
   mk.read("duplicate_containment", o.measurement.duplicate_containment);
+  mk.read("duplicate_rest_window_share", o.measurement.duplicate_rest_window_share);
   mk.read("flat_ratio", o.measurement.flat_ratio);
   mk.read("occluded_bottom_share", o.measurement.occluded_bottom_share);
   mk.read("bottom_face_band", o.measurement.bottom_face_band);

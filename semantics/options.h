@@ -56,6 +56,9 @@ struct MeasurementOptions {
   // same object detected again and seen through (no measurement is made). Above 1: off.
   double max_inside_same_class_share = 0.5;
   double duplicate_containment = 0.8;  // and that detection's image box holding this share of its box
+  // and the rest one surface: a class-deep depth window holding this share of it (the wall behind a
+  // chair's slats). Another object hidden behind shows itself and what stands around it. 0: any rest.
+  double duplicate_rest_window_share = 0.8;
   double occluded_bottom_share = 0.5;  // nearer detections' pixels under this share of my box's bottom edge:
                                        // completed as a bottom cut (above 1: never)
   // A bottom cut (border or occluder) is completed downwards only when the lowest rows of the

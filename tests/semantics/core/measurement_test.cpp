@@ -441,6 +441,21 @@ TEST(Measurement, SameClassDetectionSeenThroughANearerOneIsADuplicate) {
   EXPECT_NEAR(poses[1]->pose.translation().z(), 4.0, 0.05);
   EXPECT_EQ(duplicates, std::vector<bool>({false, false}));
   o.measurement.duplicate_containment = 0.8;
+  // What is left must be one surface (duplicate_rest_window_share): with another object at 3 m behind
+  // two thirds of the slats' gaps and the wall at 4 m behind the rest, it is an object hidden behind
+  // the chair, measured on that object; with the key at 0, a duplicate again.
+  cv::Mat two_depths = chair(4.0);
+  for (int y = 190; y < 270; ++y)
+    if ((y - 150) % 20 >= 14) two_depths(cv::Rect(250, y, 93, 1)).setTo(3.0);
+  poses = measure_keyframe_poses(two_depths, camera(), slam::SE3(), boxes, labels, up, o, nullptr, &duplicates);
+  ASSERT_TRUE(poses[1]);
+  EXPECT_NEAR(poses[1]->pose.translation().z(), 3.0, 0.1);
+  EXPECT_EQ(duplicates, std::vector<bool>({false, false}));
+  o.measurement.duplicate_rest_window_share = 0;
+  poses = measure_keyframe_poses(two_depths, camera(), slam::SE3(), boxes, labels, up, o, nullptr, &duplicates);
+  EXPECT_FALSE(poses[1]);
+  EXPECT_EQ(duplicates, std::vector<bool>({false, true}));
+  o.measurement.duplicate_rest_window_share = 0.8;
   // Off: placed on the wall.
   o.measurement.max_inside_same_class_share = 2;
   poses = measure_keyframe_poses(chair(4.0), camera(), slam::SE3(), boxes, labels, up, o, nullptr, &duplicates);
@@ -454,6 +469,8 @@ TEST(Measurement, SameClassDetectionSeenThroughANearerOneIsADuplicate) {
   test::expect_load_error_names("measurement: {max_inside_same_class_share: -1}",
                                 "semantics.measurement.max_inside_same_class_share");
   test::expect_load_error_names("measurement: {duplicate_containment: 1.5}", "semantics.measurement.duplicate_containment");
+  test::expect_load_error_names("measurement: {duplicate_rest_window_share: 1.5}",
+                                "semantics.measurement.duplicate_rest_window_share");
 }
 
 // A pole (a box-masked class: an open frame) stands in front of a cabinet, its shaft at 2.5 m and
