@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 
 #include "semantics/object_metrics.h"
@@ -170,6 +171,7 @@ struct OccluderMask {
   double far_depth = -1;  // > 0: every pixel of the image box no deeper than this (camera z) is hidden
   bool same_class = false;  // the occluder is of the measured detection's class
   double box_far_depth = -1;  // the deepest corner of its inflated 3-D box (camera z), when measured
+  double box_near_depth = -1;  // its nearest corner (camera z), when measured
 };
 
 std::vector<OccluderMask> occluder_masks(const std::vector<Occluder>& occluders, double inflate, double support_top_inflate,
@@ -189,7 +191,9 @@ std::vector<OccluderMask> occluder_masks(const std::vector<Occluder>& occluders,
     if (to_far_end) {
       // The deepest corner: the centre's depth plus each half axis's reach along the optical axis.
       const slam::SE3 T_cb = T_wc.inverse() * o.pose->pose;
-      m.box_far_depth = T_cb.translation().z() + T_cb.rotation_matrix().row(2).cwiseAbs().dot(m.half_size);
+      const double reach = T_cb.rotation_matrix().row(2).cwiseAbs().dot(m.half_size);
+      m.box_far_depth = T_cb.translation().z() + reach;
+      m.box_near_depth = T_cb.translation().z() - reach;
     }
     if (to_far_end && (o.box_masked || far_end == "all" || (far_end == "same_class" && o.same_class)))
       m.far_depth = m.box_far_depth;
@@ -259,6 +263,23 @@ std::optional<double> floor_below_box(const cv::Mat& depth, const slam::PinholeC
   return percentile(hs, 0.5);
 }
 
+// The keyframe's floor (along `up`): the median of the floors found just below its boxes that do not
+// touch the image's bottom (floor_below_box); none when no box shows one.
+std::optional<double> keyframe_floor(const cv::Mat& depth, const slam::PinholeCamera& cam, const slam::SE3& T_wc,
+                                     const std::vector<Eigen::Vector4d>& boxes, const Eigen::Vector3d& up,
+                                     const MeasurementOptions& o) {
+  std::vector<double> floors;
+  for (const Eigen::Vector4d& box : boxes) {
+    if (box(3) >= depth.rows - 1 - o.border_margin) continue;
+    const int x0 = std::max(0, static_cast<int>(std::ceil(box(0)))),
+              x1 = std::min(depth.cols - 1, static_cast<int>(box(2)));
+    if (const auto f = floor_below_box(depth, cam, T_wc, box, x0, x1, up.normalized(), o.floor_spread))
+      floors.push_back(*f);
+  }
+  if (floors.empty()) return std::nullopt;
+  return percentile(floors, 0.5);
+}
+
 // Where the pixels of rows first..last (columns x0..x1) that stand higher than `above` along `up`,
 // at depths z_near..z_far and not hidden by an occluder, lie along `axis`: the q-quantile of their
 // positions, when at least 5 do. They are an object's low parts (a wheelchair's footplate), the
@@ -284,6 +305,66 @@ std::optional<double> low_rows_extent(const cv::Mat& depth, const slam::PinholeC
 struct BorderCut {
   bool left = false, right = false, top = false, bottom = false;
 };
+
+// The depths at which a foot_window_classes object's nearest parts stand: where the ray through its
+// box's bottom row (middle column), moved measurement.foot_window_rows of the box's height down and
+// up, meets the floor just below the box, foot_window_slack nearer and farther. A box whose lower end
+// nearer detections hide (`bottom_hidden`) stands behind the near end of each measured one that
+// reaches its bottom row (the keyframe's floor is no bound there: on 7-Scenes it was the table's
+// top, under the chairs' backs seen behind the table).
+// None when off, for other classes, for boxes cut at a side or reaching within that error of the
+// image's bottom, when no floor shows below the box, or when the box is shorter than
+// foot_min_height_share of the class's height standing on it.
+std::optional<std::pair<double, double>> foot_depths(const cv::Mat& depth, const slam::PinholeCamera& cam,
+                                                     const slam::SE3& T_wc, const Eigen::Vector4d& box, int x0, int x1,
+                                                     const Eigen::Vector3d& up, const std::string& label,
+                                                     const BorderCut& cut, const SemanticOptions& options,
+                                                     std::optional<double> keyframe_floor,
+                                                     const std::vector<OccluderMask>& masks, bool bottom_hidden) {
+  const MeasurementOptions& o = options.measurement;
+  if (o.foot_window_rows <= 0 || !options.foot_window_classes.count(label) || cut.left || cut.right)
+    return std::nullopt;
+  const slam::SE3 T_cw = T_wc.inverse();
+  const double centre = 0.5 * (box(0) + box(2)), rows = o.foot_window_rows * (box(3) - box(1));
+  // A ray at or above the horizon never meets the floor: the foot may then stand at any distance.
+  const auto floor_depth = [&](double floor, double row) {
+    const auto p = ray_meets_plane(cam, T_wc, Eigen::Vector2d(centre, row), floor * up, up);
+    return p ? (T_cw * *p).z() : std::numeric_limits<double>::infinity();
+  };
+  if (cut.bottom) {
+    if (!bottom_hidden || box(3) >= depth.rows - 1 - o.border_margin) return std::nullopt;
+    double nearest = 0;
+    for (const auto& m : masks)
+      if (m.box_near_depth > 0 && m.box(0) <= box(2) && m.box(2) >= box(0) && m.box(1) <= box(3) + 3 &&
+          m.box(3) >= box(3) - 2)
+        nearest = std::max(nearest, m.box_near_depth);
+    if (nearest <= 0) return std::nullopt;
+    return std::make_pair(nearest - o.foot_window_slack, std::numeric_limits<double>::infinity());
+  }
+  // Within the detector's error of the image's bottom, the object's foot may lie below the image.
+  if (box(3) + rows + 8 > depth.rows - 1) return std::nullopt;
+  auto floor = floor_below_box(depth, cam, T_wc, box, x0, x1, up, o.floor_spread);
+  // Something standing in front of the box's lower end (a chair of the row, missed) leaves the floor
+  // under part of it: the keyframe's floor, where most of those pixels lie on it.
+  if (!floor && keyframe_floor) {
+    const int bottom = static_cast<int>(box(3));
+    const std::vector<double> hs = pixel_heights(depth, cam, T_wc, bottom + 3, bottom + 8, x0, x1, up);
+    const auto on =
+        std::count_if(hs.begin(), hs.end(), [&](double h) { return std::abs(h - *keyframe_floor) <= o.floor_spread; });
+    if (hs.size() >= 10 && on >= o.foot_floor_share * hs.size()) floor = keyframe_floor;
+  }
+  if (!floor) return std::nullopt;
+  // Standing there, the object rises its class's height: a box much shorter than that is not all of
+  // it on that floor (a chair's back seen above a table, whose top is then the "floor" below it).
+  const auto size = options.class_sizes.find(label);
+  const auto foot = ray_meets_plane(cam, T_wc, Eigen::Vector2d(centre, box(3)), *floor * up, up);
+  if (size == options.class_sizes.end() || !foot) return std::nullopt;
+  const Eigen::Vector3d foot_c = T_cw * *foot, top_c = T_cw * (*foot + size->second[2] * up);
+  if (top_c.z() <= 0 || box(3) - box(1) < o.foot_min_height_share * (cam.project(foot_c).y() - cam.project(top_c).y()))
+    return std::nullopt;
+  return std::make_pair(floor_depth(*floor, box(3) + rows) - o.foot_window_slack,
+                        floor_depth(*floor, box(3) - rows) + o.foot_window_slack);
+}
 
 // Whether nearer detections hide the box's lower end over at least `share` of its width (a cabinet
 // behind a bed): the visible part then ends at the occluder, not at the object's own end. A column
@@ -352,7 +433,8 @@ bool surface_reaches_bottom_border(const cv::Mat& depth, const slam::PinholeCame
 std::optional<ObjectPose> measure_pose(const cv::Mat& depth, const slam::PinholeCamera& cam, const slam::SE3& T_wc,
                                        const Eigen::Vector4d& box, const Eigen::Vector3d& up, const std::string& label,
                                        const SemanticOptions& options, const std::vector<Occluder>& occluders,
-                                       bool thin_side_cut_as_uncut, bool* duplicate = nullptr) {
+                                       bool thin_side_cut_as_uncut, bool* duplicate = nullptr,
+                                       std::optional<double> keyframe_floor = std::nullopt) {
   const MeasurementOptions& o = options.measurement;
   if (depth.empty() || depth.type() != CV_32F) return std::nullopt;
   const double w = box(2) - box(0), h = box(3) - box(1);
@@ -376,8 +458,9 @@ std::optional<ObjectPose> measure_pose(const cv::Mat& depth, const slam::Pinhole
   // Hidden at the bottom by a nearer detection: completed as a bottom cut is.
   const std::vector<OccluderMask> masks =
       occluder_masks(occluders, o.occluder_inflate, o.support_top_inflate, T_wc, o.mask_to_far_end, o.box_mask_to_far_end);
-  if (sized && o.occluded_bottom_share <= 1 && bottom_occluded(depth, cam, T_wc, box, masks, o.occluded_bottom_share))
-    cut.bottom = true;
+  const bool bottom_hidden =
+      sized && o.occluded_bottom_share <= 1 && bottom_occluded(depth, cam, T_wc, box, masks, o.occluded_bottom_share);
+  if (bottom_hidden) cut.bottom = true;
   const bool completes = sized && o.complete_depth_with_class_size;
   const bool side = cut.left || cut.right;
   if ((side && (!completes || !o.complete_side_cuts || thin)) ||
@@ -440,11 +523,14 @@ std::optional<ObjectPose> measure_pose(const cv::Mat& depth, const slam::Pinhole
   // An axis class (a pole) rises above the furniture in front of it (a bed's footboard, a chair):
   // its window starts at a point of the box's upper half, which shows its shaft.
   const int mid_row = (y0 + y1) / 2;
+  const auto foot = foot_depths(depth, cam, T_wc, box, x0, x1, up.normalized(), label, cut, options, keyframe_floor,
+                                masks, bottom_hidden);
   size_t begin = 0, end = 0;
   for (size_t i = 0, j = 0; i < samples.size(); ++i) {
     while (j < samples.size() && samples[j].z <= samples[i].z + band) ++j;
     if (edge_depth >= 0 && !(samples[i].z <= edge_depth && edge_depth <= samples[i].z + band)) continue;
     if (axis && samples[i].y > mid_row) continue;
+    if (foot && !(samples[i].z >= foot->first && samples[i].z <= foot->second)) continue;
     if (j - i > end - begin) begin = i, end = j;
     if (thin && j - i >= need) break;
   }
@@ -834,6 +920,7 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
   std::vector<bool> supports(n);
   for (size_t i = 0; i < n; ++i) supports[i] = options.support_classes.count(labels[i]) > 0;
   const auto nearer = nearer_overlapping_detections(depth, boxes, options.measurement, supports);
+  const std::optional<double> floor = keyframe_floor(depth, camera, T_wc, boxes, up, options.measurement);
   std::vector<double> z;  // whole-box median depths, only needed to break a cycle
   // Front to back: a detection is measured once all its occluders are; when the "nearer" relation
   // has a cycle (nearer by depth one way, by footprint the other), the nearest pending one goes next
@@ -862,7 +949,8 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
                            options.box_masked_classes.count(labels[j]) > 0, supports[j]});
     }
     bool duplicate = false;
-    poses[next] = measure_pose(depth, camera, T_wc, boxes[next], up, labels[next], options, occluders, false, &duplicate);
+    poses[next] =
+        measure_pose(depth, camera, T_wc, boxes[next], up, labels[next], options, occluders, false, &duplicate, floor);
     if (duplicates) (*duplicates)[next] = duplicate;
     if (side_cut_poses && !poses[next] && nearer[next].empty())
       (*side_cut_poses)[next] =

@@ -44,6 +44,10 @@ std::optional<std::string> SemanticOptions::validate() const {
   c(measurement.bottom_face_min_length, 0, 100, "measurement.bottom_face_min_length");
   c(measurement.top_surface_tolerance, 0, 10, "measurement.top_surface_tolerance");
   c(measurement.floor_spread, 0, 10, "measurement.floor_spread");
+  c(measurement.foot_window_rows, 0, 1, "measurement.foot_window_rows");
+  c(measurement.foot_window_slack, 0, 10, "measurement.foot_window_slack");
+  c(measurement.foot_floor_share, 0, 1, "measurement.foot_floor_share");
+  c(measurement.foot_min_height_share, 0, 10, "measurement.foot_min_height_share");
   c(measurement.floor_clearance, 0, 10, "measurement.floor_clearance");
   c(measurement.support_containment, 0, 1, "measurement.support_containment");
   c(measurement.support_area_ratio, 1, 1e6, "measurement.support_area_ratio");
@@ -170,6 +174,10 @@ SemanticOptions load_semantic_options(const YAML::Node& s, const std::filesystem
   mk.read("axes_from_planes", o.measurement.axes_from_planes);
   mk.read("anchor_side_face", o.measurement.anchor_side_face);
   mk.read("floor_spread", o.measurement.floor_spread);
+  mk.read("foot_window_rows", o.measurement.foot_window_rows);
+  mk.read("foot_window_slack", o.measurement.foot_window_slack);
+  mk.read("foot_floor_share", o.measurement.foot_floor_share);
+  mk.read("foot_min_height_share", o.measurement.foot_min_height_share);
   gk.read("size", o.groups.size);
   gk.read("overlap", o.groups.overlap);
   ak.read("mode", o.association.mode);

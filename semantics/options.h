@@ -142,6 +142,17 @@ struct MeasurementOptions {
   // half the box's size behind that face.
   bool anchor_side_face = true;
   double floor_spread = 0.05;
+  // A foot_window_classes class stands on the floor: its nearest parts are where its box's bottom
+  // row meets the floor just below the box. Its depth window must begin there, within the depths
+  // of that row moved foot_window_rows of the box's height up and down (the detector's error at the
+  // bottom edge), and foot_window_slack (m) either side; 0: off (the fullest window anywhere).
+  double foot_window_rows = 0.06;
+  double foot_window_slack = 0.1;
+  // Without a floor of its own below the box (something stands in front of its lower end), the
+  // keyframe's floor (the median of its boxes' floors) when this share of those pixels lies on it.
+  double foot_floor_share = 0.5;
+  // The box must be at least this share of the class's height (in pixels) standing on that floor.
+  double foot_min_height_share = 0.7;
 };
 
 // Keyframe groups (Assoc. III-A.1): M adjacent keyframes, j shared with the next group. The paper
@@ -346,6 +357,10 @@ struct SemanticOptions {
   // casters): with measurement.front_from_foot their front is where the box's bottom row meets the
   // floor, or with measurement.front_from_low_rows where those rows' parts above the floor begin.
   std::set<std::string> foot_front_classes = {"wheelchair"};
+  // Classes whose depth window begins at their foot (measurement.foot_window_rows): a chair of a row
+  // seen end on owns fewer of its box's pixels than the chair in front of it, whose depths are then
+  // the fullest window when that chair is missed or measured off.
+  std::set<std::string> foot_window_classes = {"chair"};
   // Classes whose seen points crowd unevenly over faces that meet at a corner: a bed seen from its
   // foot shows its footboard, its top and one side, and the principal axes of those points ran 15
   // degrees (median) off its length on the synthetic ward; a chair seen at a slant shows its seat's

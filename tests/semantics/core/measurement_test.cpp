@@ -548,6 +548,88 @@ TEST(Measurement, FrontFromTheFootOfALowFrontedClass) {
   test::expect_load_error_names("measurement: {floor_spread: -1}", "semantics.measurement.floor_spread");
 }
 
+// A chair of a row seen end on, behind a missed one: its face at 5 m stands on the floor 1.2 m below
+// the camera, and the missed chair's seat and back, a slab at 4.4 m floating 0.3-0.75 m below the
+// camera, hide most of its box. The fullest window is the slab; with foot_window_rows the window must
+// begin where the box's bottom row meets the floor just below it (5 m), and the chair is measured.
+TEST(Measurement, AStandingClassIsMeasuredWhereItsFootMeetsTheFloor) {
+  SemanticOptions o;
+  const Eigen::Vector3d up(0, -1, 0);
+  const double f = 500, floor = 1.2;
+  cv::Mat d(480, 640, CV_32F, cv::Scalar(8.0f));
+  for (int v = 0; v < 480; ++v)
+    for (int u = 0; u < 640; ++u) {
+      const double a = (u - 319.5) / f, b = (v - 239.5) / f;
+      if (b > 0 && floor / b < 8) d.at<float>(v, u) = static_cast<float>(floor / b);
+      if (b * 5.0 >= 0.35 && b * 5.0 <= floor && std::abs(a * 5.0) <= 0.25) d.at<float>(v, u) = 5.0f;
+      if (b * 4.4 >= 0.3 && b * 4.4 <= 0.75 && std::abs(a * 4.4) <= 0.3) d.at<float>(v, u) = 4.4f;
+    }
+  const Eigen::Vector4d box(269.5, 274.5, 369.5, 359.5);  // the chair's face; bottom row: its foot at 5 m
+  const auto centre_z = [&](const SemanticOptions& s) {
+    const auto p = measure_pose_from_depth(d, camera(), slam::SE3(), box, up, "chair", s);
+    return p ? p->pose.translation().z() : -1.0;
+  };
+  // The chair's 0.5 m depth behind its face.
+  EXPECT_NEAR(centre_z(o), 5.25, 0.03);
+  SemanticOptions off = o;
+  off.measurement.foot_window_rows = 0;
+  EXPECT_NEAR(centre_z(off), 4.65, 0.03);
+  // A class not in foot_window_classes keeps the fullest window.
+  SemanticOptions other = o;
+  other.foot_window_classes.clear();
+  EXPECT_NEAR(centre_z(other), 4.65, 0.03);
+  // A box shorter than foot_min_height_share of the class standing on that floor (a chair's back seen
+  // above a table, the table's top under it) is not all of the object: the fullest window.
+  SemanticOptions tall = o;
+  tall.measurement.foot_min_height_share = 1.5;
+  EXPECT_NEAR(centre_z(tall), 4.65, 0.03);
+  // Something other than a floor under the whole box (a box on a shelf 0.2 m above the floor): no
+  // foot, the fullest window.
+  cv::Mat shelf = d.clone();
+  shelf(cv::Rect(260, 362, 120, 20)).setTo(4.2f);
+  d = shelf;
+  EXPECT_NEAR(centre_z(o), 4.65, 0.03);
+  EXPECT_DOUBLE_EQ(
+      load_semantic_options(YAML::Load("measurement: {foot_window_rows: 0.1}"), "s.yaml").measurement.foot_window_rows,
+      0.1);
+  test::expect_load_error_names("measurement: {foot_window_rows: -1}", "semantics.measurement.foot_window_rows");
+  test::expect_load_error_names("measurement: {foot_window_slack: -1}", "semantics.measurement.foot_window_slack");
+  test::expect_load_error_names("measurement: {foot_floor_share: 2}", "semantics.measurement.foot_floor_share");
+  test::expect_load_error_names("measurement: {foot_min_height_share: -1}",
+                                "semantics.measurement.foot_min_height_share");
+}
+
+// The same chair behind a missed one that stands on the floor in front of its left third: the floor
+// below the chair's box shows only beside it, so the box has no floor of its own; measured with the
+// keyframe's other detections (a cabinet whose floor shows), it gets the keyframe's floor there.
+TEST(Measurement, AStandingClassBehindAMissedOneTakesTheKeyframesFloor) {
+  SemanticOptions o;
+  const Eigen::Vector3d up(0, -1, 0);
+  const double f = 500, floor = 1.2;
+  cv::Mat d(480, 640, CV_32F, cv::Scalar(8.0f));
+  for (int v = 0; v < 480; ++v)
+    for (int u = 0; u < 640; ++u) {
+      const double a = (u - 319.5) / f, b = (v - 239.5) / f;
+      if (b > 0 && floor / b < 8) d.at<float>(v, u) = static_cast<float>(floor / b);
+      if (b * 5.0 >= 0.35 && b * 5.0 <= floor && std::abs(a * 5.0) <= 0.25) d.at<float>(v, u) = 5.0f;
+      if (b * 4.4 >= 0.3 && b * 4.4 <= floor && a * 4.4 >= -0.3 && a * 4.4 <= 0.0) d.at<float>(v, u) = 4.4f;
+      if (b * 4.0 >= 0.4 && b * 4.0 <= floor && a * 4.0 >= 1.0 && a * 4.0 <= 1.5) d.at<float>(v, u) = 4.0f;
+    }
+  const Eigen::Vector4d chair(269.5, 274.5, 369.5, 359.5), cabinet(444.5, 289.5, 507, 389.5);
+  const auto poses = measure_keyframe_poses(d, camera(), slam::SE3(), {chair, cabinet}, {"chair", "cabinet"}, up, o);
+  ASSERT_TRUE(poses[0]);
+  EXPECT_NEAR(poses[0]->pose.translation().z(), 5.25, 0.03);
+  // Alone, the box shows no floor of its own: the fullest window, the missed chair's.
+  const auto alone = measure_pose_from_depth(d, camera(), slam::SE3(), chair, up, "chair", o);
+  ASSERT_TRUE(alone);
+  EXPECT_LT(alone->pose.translation().z(), 4.8);
+  // Required on fewer of the pixels below the box than lie on that floor: the fullest window again.
+  o.measurement.foot_floor_share = 0.9;
+  const auto strict = measure_keyframe_poses(d, camera(), slam::SE3(), {chair, cabinet}, {"chair", "cabinet"}, up, o);
+  ASSERT_TRUE(strict[0]);
+  EXPECT_LT(strict[0]->pose.translation().z(), 4.8);
+}
+
 // A door cut by the image's bottom border is completed from its class height: its top is real, the
 // rest comes from the door's 2.05 m.
 TEST(Measurement, BottomCutBoxIsCompletedFromTheClassHeight) {
