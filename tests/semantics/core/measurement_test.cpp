@@ -29,6 +29,28 @@ cv::Mat scene(double wall, double front, int x0, int x1, int y0, int y1) {
   return d;
 }
 
+// Depth of a scene seen by the test camera (f = 500): a wall at 8 m and a floor kFloor below the
+// camera (y down), world = camera frame.
+constexpr double kFloor = 1.2;
+cv::Mat floor_scene() {
+  cv::Mat d(480, 640, CV_32F, cv::Scalar(8.0f));
+  for (int v = 0; v < 480; ++v) {
+    const double b = (v - 239.5) / 500.0;
+    if (b > 0 && kFloor / b < 8) d.row(v).setTo(static_cast<float>(kFloor / b));
+  }
+  return d;
+}
+
+// A face parallel to the image at depth z over x in [x0, x1] and y (down) in [y0, y1], metres, in
+// front of what the scene shows there.
+void add_face(cv::Mat& d, double z, double x0, double x1, double y0, double y1) {
+  for (int v = 0; v < d.rows; ++v)
+    for (int u = 0; u < d.cols; ++u) {
+      const double x = (u - 319.5) / 500.0 * z, y = (v - 239.5) / 500.0 * z;
+      if (x >= x0 && x <= x1 && y >= y0 && y <= y1) d.at<float>(v, u) = static_cast<float>(z);
+    }
+}
+
 TEST(Measurement, PlacesTheFrontFaceAndCompletesItsDepth) {
   SemanticOptions o;
   const slam::SE3 T;  // camera = world
@@ -517,15 +539,9 @@ TEST(Measurement, BoxMaskedOccluderHidesItsBoxOnlyUpToItsFarEnd) {
 TEST(Measurement, FrontFromTheFootOfALowFrontedClass) {
   SemanticOptions o;
   const Eigen::Vector3d up(0, -1, 0);
-  const double f = 500, floor = 1.2;
-  cv::Mat d(480, 640, CV_32F, cv::Scalar(8.0f));
-  for (int v = 0; v < 480; ++v)
-    for (int u = 0; u < 640; ++u) {
-      const double a = (u - 319.5) / f, b = (v - 239.5) / f;
-      if (b > 0 && floor / b < 8) d.at<float>(v, u) = static_cast<float>(floor / b);
-      if (b * 4.0 >= 0.3 && b * 4.0 <= 0.9 && std::abs(a * 4.0) <= 0.3) d.at<float>(v, u) = 4.0f;
-      if (b * 3.6 >= 1.0 && b * 3.6 <= floor && std::abs(a * 3.6) <= 0.2) d.at<float>(v, u) = 3.6f;
-    }
+  cv::Mat d = floor_scene();
+  add_face(d, 4.0, -0.3, 0.3, 0.3, 0.9);
+  add_face(d, 3.6, -0.2, 0.2, 1.0, kFloor);
   const Eigen::Vector4d box(282, 277, 357, 406);  // bottom: the footplate's foot, 239.5 + 500 * 1.2 / 3.6
   const auto centre_z = [&]() {
     const auto p = measure_pose_from_depth(d, camera(), slam::SE3(), box, up, "wheelchair", o);
@@ -555,15 +571,9 @@ TEST(Measurement, FrontFromTheFootOfALowFrontedClass) {
 TEST(Measurement, AStandingClassIsMeasuredWhereItsFootMeetsTheFloor) {
   SemanticOptions o;
   const Eigen::Vector3d up(0, -1, 0);
-  const double f = 500, floor = 1.2;
-  cv::Mat d(480, 640, CV_32F, cv::Scalar(8.0f));
-  for (int v = 0; v < 480; ++v)
-    for (int u = 0; u < 640; ++u) {
-      const double a = (u - 319.5) / f, b = (v - 239.5) / f;
-      if (b > 0 && floor / b < 8) d.at<float>(v, u) = static_cast<float>(floor / b);
-      if (b * 5.0 >= 0.35 && b * 5.0 <= floor && std::abs(a * 5.0) <= 0.25) d.at<float>(v, u) = 5.0f;
-      if (b * 4.4 >= 0.3 && b * 4.4 <= 0.75 && std::abs(a * 4.4) <= 0.3) d.at<float>(v, u) = 4.4f;
-    }
+  cv::Mat d = floor_scene();
+  add_face(d, 5.0, -0.25, 0.25, 0.35, kFloor);
+  add_face(d, 4.4, -0.3, 0.3, 0.3, 0.75);
   const Eigen::Vector4d box(269.5, 274.5, 369.5, 359.5);  // the chair's face; bottom row: its foot at 5 m
   const auto centre_z = [&](const SemanticOptions& s) {
     const auto p = measure_pose_from_depth(d, camera(), slam::SE3(), box, up, "chair", s);
@@ -592,11 +602,12 @@ TEST(Measurement, AStandingClassIsMeasuredWhereItsFootMeetsTheFloor) {
   EXPECT_DOUBLE_EQ(
       load_semantic_options(YAML::Load("measurement: {foot_window_rows: 0.1}"), "s.yaml").measurement.foot_window_rows,
       0.1);
-  test::expect_load_error_names("measurement: {foot_window_rows: -1}", "semantics.measurement.foot_window_rows");
-  test::expect_load_error_names("measurement: {foot_window_slack: -1}", "semantics.measurement.foot_window_slack");
-  test::expect_load_error_names("measurement: {foot_floor_share: 2}", "semantics.measurement.foot_floor_share");
-  test::expect_load_error_names("measurement: {foot_min_height_share: -1}",
-                                "semantics.measurement.foot_min_height_share");
+  const std::pair<std::string, std::string> bad_values[] = {{"foot_window_rows", "-1"},
+                                                            {"foot_window_slack", "-1"},
+                                                            {"foot_floor_share", "2"},
+                                                            {"foot_min_height_share", "-1"}};
+  for (const auto& [key, value] : bad_values)
+    test::expect_load_error_names("measurement: {" + key + ": " + value + "}", "semantics.measurement." + key);
 }
 
 // The same chair behind a missed one that stands on the floor in front of its left third: the floor
@@ -605,16 +616,10 @@ TEST(Measurement, AStandingClassIsMeasuredWhereItsFootMeetsTheFloor) {
 TEST(Measurement, AStandingClassBehindAMissedOneTakesTheKeyframesFloor) {
   SemanticOptions o;
   const Eigen::Vector3d up(0, -1, 0);
-  const double f = 500, floor = 1.2;
-  cv::Mat d(480, 640, CV_32F, cv::Scalar(8.0f));
-  for (int v = 0; v < 480; ++v)
-    for (int u = 0; u < 640; ++u) {
-      const double a = (u - 319.5) / f, b = (v - 239.5) / f;
-      if (b > 0 && floor / b < 8) d.at<float>(v, u) = static_cast<float>(floor / b);
-      if (b * 5.0 >= 0.35 && b * 5.0 <= floor && std::abs(a * 5.0) <= 0.25) d.at<float>(v, u) = 5.0f;
-      if (b * 4.4 >= 0.3 && b * 4.4 <= floor && a * 4.4 >= -0.3 && a * 4.4 <= 0.0) d.at<float>(v, u) = 4.4f;
-      if (b * 4.0 >= 0.4 && b * 4.0 <= floor && a * 4.0 >= 1.0 && a * 4.0 <= 1.5) d.at<float>(v, u) = 4.0f;
-    }
+  cv::Mat d = floor_scene();
+  add_face(d, 5.0, -0.25, 0.25, 0.35, kFloor);
+  add_face(d, 4.4, -0.3, 0.0, 0.3, kFloor);
+  add_face(d, 4.0, 1.0, 1.5, 0.4, kFloor);
   const Eigen::Vector4d chair(269.5, 274.5, 369.5, 359.5), cabinet(444.5, 289.5, 507, 389.5);
   const auto poses = measure_keyframe_poses(d, camera(), slam::SE3(), {chair, cabinet}, {"chair", "cabinet"}, up, o);
   ASSERT_TRUE(poses[0]);
