@@ -570,6 +570,7 @@ TEST(Measurement, FrontFromTheFootOfALowFrontedClass) {
 // begin where the box's bottom row meets the floor just below it (5 m), and the chair is measured.
 TEST(Measurement, AStandingClassIsMeasuredWhereItsFootMeetsTheFloor) {
   SemanticOptions o;
+  o.measurement.foot_window_rows = 0.06;
   const Eigen::Vector3d up(0, -1, 0);
   cv::Mat d = floor_scene();
   add_face(d, 5.0, -0.25, 0.25, 0.35, kFloor);
@@ -581,9 +582,9 @@ TEST(Measurement, AStandingClassIsMeasuredWhereItsFootMeetsTheFloor) {
   };
   // The chair's 0.5 m depth behind its face.
   EXPECT_NEAR(centre_z(o), 5.25, 0.03);
-  SemanticOptions off = o;
-  off.measurement.foot_window_rows = 0;
-  EXPECT_NEAR(centre_z(off), 4.65, 0.03);
+  // Off by default.
+  EXPECT_DOUBLE_EQ(SemanticOptions().measurement.foot_window_rows, 0);
+  EXPECT_NEAR(centre_z(SemanticOptions()), 4.65, 0.03);
   // A class not in foot_window_classes keeps the fullest window.
   SemanticOptions other = o;
   other.foot_window_classes.clear();
@@ -615,6 +616,7 @@ TEST(Measurement, AStandingClassIsMeasuredWhereItsFootMeetsTheFloor) {
 // keyframe's other detections (a cabinet whose floor shows), it gets the keyframe's floor there.
 TEST(Measurement, AStandingClassBehindAMissedOneTakesTheKeyframesFloor) {
   SemanticOptions o;
+  o.measurement.foot_window_rows = 0.06;
   const Eigen::Vector3d up(0, -1, 0);
   cv::Mat d = floor_scene();
   add_face(d, 5.0, -0.25, 0.25, 0.35, kFloor);
