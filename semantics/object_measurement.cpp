@@ -920,7 +920,12 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
   std::vector<bool> supports(n);
   for (size_t i = 0; i < n; ++i) supports[i] = options.support_classes.count(labels[i]) > 0;
   const auto nearer = nearer_overlapping_detections(depth, boxes, options.measurement, supports);
-  const std::optional<double> floor = keyframe_floor(depth, camera, T_wc, boxes, up, options.measurement);
+  // The keyframe's floor serves only the foot window: not looked for when that is off.
+  const bool foot_window = options.measurement.foot_window_rows > 0 &&
+                           std::any_of(labels.begin(), labels.end(),
+                                       [&](const std::string& l) { return options.foot_window_classes.count(l) > 0; });
+  const std::optional<double> floor =
+      foot_window ? keyframe_floor(depth, camera, T_wc, boxes, up, options.measurement) : std::nullopt;
   std::vector<double> z;  // whole-box median depths, only needed to break a cycle
   // Front to back: a detection is measured once all its occluders are; when the "nearer" relation
   // has a cycle (nearer by depth one way, by footprint the other), the nearest pending one goes next

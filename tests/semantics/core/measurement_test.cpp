@@ -564,16 +564,28 @@ TEST(Measurement, FrontFromTheFootOfALowFrontedClass) {
   test::expect_load_error_names("measurement: {floor_spread: -1}", "semantics.measurement.floor_spread");
 }
 
+// Options with the foot window on, at the value measured (measurement.foot_window_rows 0.06).
+SemanticOptions foot_window_options() {
+  SemanticOptions o;
+  o.measurement.foot_window_rows = 0.06;
+  return o;
+}
+
+// A chair's face 0.5 m wide at 5 m, standing on the floor scene's floor from 0.35 m below the camera.
+cv::Mat chair_on_the_floor_scene() {
+  cv::Mat d = floor_scene();
+  add_face(d, 5.0, -0.25, 0.25, 0.35, kFloor);
+  return d;
+}
+
 // A chair of a row seen end on, behind a missed one: its face at 5 m stands on the floor 1.2 m below
 // the camera, and the missed chair's seat and back, a slab at 4.4 m floating 0.3-0.75 m below the
 // camera, hide most of its box. The fullest window is the slab; with foot_window_rows the window must
 // begin where the box's bottom row meets the floor just below it (5 m), and the chair is measured.
 TEST(Measurement, AStandingClassIsMeasuredWhereItsFootMeetsTheFloor) {
-  SemanticOptions o;
-  o.measurement.foot_window_rows = 0.06;
+  const SemanticOptions o = foot_window_options();
   const Eigen::Vector3d up(0, -1, 0);
-  cv::Mat d = floor_scene();
-  add_face(d, 5.0, -0.25, 0.25, 0.35, kFloor);
+  cv::Mat d = chair_on_the_floor_scene();
   add_face(d, 4.4, -0.3, 0.3, 0.3, 0.75);
   const Eigen::Vector4d box(269.5, 274.5, 369.5, 359.5);  // the chair's face; bottom row: its foot at 5 m
   const auto centre_z = [&](const SemanticOptions& s) {
@@ -615,11 +627,9 @@ TEST(Measurement, AStandingClassIsMeasuredWhereItsFootMeetsTheFloor) {
 // below the chair's box shows only beside it, so the box has no floor of its own; measured with the
 // keyframe's other detections (a cabinet whose floor shows), it gets the keyframe's floor there.
 TEST(Measurement, AStandingClassBehindAMissedOneTakesTheKeyframesFloor) {
-  SemanticOptions o;
-  o.measurement.foot_window_rows = 0.06;
+  SemanticOptions o = foot_window_options();
   const Eigen::Vector3d up(0, -1, 0);
-  cv::Mat d = floor_scene();
-  add_face(d, 5.0, -0.25, 0.25, 0.35, kFloor);
+  cv::Mat d = chair_on_the_floor_scene();
   add_face(d, 4.4, -0.3, 0.0, 0.3, kFloor);
   add_face(d, 4.0, 1.0, 1.5, 0.4, kFloor);
   const Eigen::Vector4d chair(269.5, 274.5, 369.5, 359.5), cabinet(444.5, 289.5, 507, 389.5);
