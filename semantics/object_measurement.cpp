@@ -306,6 +306,11 @@ struct BorderCut {
   bool left = false, right = false, top = false, bottom = false;
 };
 
+// Whether the foot window applies to detections of `label` (on, and a foot_window_classes class).
+bool foot_window_applies(const std::string& label, const SemanticOptions& options) {
+  return options.measurement.foot_window_rows > 0 && options.foot_window_classes.count(label) > 0;
+}
+
 // The depths at which a foot_window_classes object's nearest parts stand: where the ray through its
 // box's bottom row (middle column), moved measurement.foot_window_rows of the box's height down and
 // up, meets the floor just below the box, foot_window_slack nearer and farther. A box whose lower end
@@ -322,8 +327,7 @@ std::optional<std::pair<double, double>> foot_depths(const cv::Mat& depth, const
                                                      std::optional<double> keyframe_floor,
                                                      const std::vector<OccluderMask>& masks, bool bottom_hidden) {
   const MeasurementOptions& o = options.measurement;
-  if (o.foot_window_rows <= 0 || !options.foot_window_classes.count(label) || cut.left || cut.right)
-    return std::nullopt;
+  if (!foot_window_applies(label, options) || cut.left || cut.right) return std::nullopt;
   const slam::SE3 T_cw = T_wc.inverse();
   const double centre = 0.5 * (box(0) + box(2)), rows = o.foot_window_rows * (box(3) - box(1));
   // A ray at or above the horizon never meets the floor: the foot may then stand at any distance.
@@ -921,9 +925,8 @@ std::vector<std::optional<ObjectPose>> measure_keyframe_poses(const cv::Mat& dep
   for (size_t i = 0; i < n; ++i) supports[i] = options.support_classes.count(labels[i]) > 0;
   const auto nearer = nearer_overlapping_detections(depth, boxes, options.measurement, supports);
   // The keyframe's floor serves only the foot window: not looked for when that is off.
-  const bool foot_window = options.measurement.foot_window_rows > 0 &&
-                           std::any_of(labels.begin(), labels.end(),
-                                       [&](const std::string& l) { return options.foot_window_classes.count(l) > 0; });
+  const bool foot_window =
+      std::any_of(labels.begin(), labels.end(), [&](const std::string& l) { return foot_window_applies(l, options); });
   const std::optional<double> floor =
       foot_window ? keyframe_floor(depth, camera, T_wc, boxes, up, options.measurement) : std::nullopt;
   std::vector<double> z;  // whole-box median depths, only needed to break a cycle
