@@ -2,14 +2,19 @@
 
 #include <cstdio>
 #include <functional>
+#include <type_traits>
 
 namespace wardmap::apps {
 
 namespace {
 
-std::string format(const char* fmt, double a, double b = 0, double c = 0, double d = 0) {
+// printf into a string, doubles only: the argument count follows the format, and anything but a
+// double (which "%f" and "%g" would read wrongly) fails to compile.
+template <typename... Args>
+std::string format(const char* fmt, Args... args) {
+  static_assert((std::is_same_v<Args, double> && ...), "format() takes doubles only");
   char buf[256];
-  std::snprintf(buf, sizeof buf, fmt, a, b, c, d);
+  std::snprintf(buf, sizeof buf, fmt, args...);
   return buf;
 }
 
