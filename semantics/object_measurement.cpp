@@ -210,12 +210,14 @@ bool hidden_by(const std::vector<OccluderMask>& masks, int x, int y, const Eigen
   for (const auto& m : masks) {
     const auto& b = m.box;
     if (x < b(0) || x > b(2) || y < b(1) || y > b(3)) continue;
-    if (m.by_box) {
-      hidden = true;
-    } else if (((m.world_to_box * p_world).cwiseAbs().array() <= m.half_size.array()).all()) {
+    // A mask by box hides its whole box; otherwise a pixel is hidden inside the occluder's measured
+    // 3-D box (which also says whether a same-class box holds it) or up to its far depth.
+    const bool in_3d_box =
+        !m.by_box && ((m.world_to_box * p_world).cwiseAbs().array() <= m.half_size.array()).all();
+    if (in_3d_box) {
       hidden = true;
       if (inside_same_class && m.same_class) *inside_same_class = true;
-    } else if (m.far_depth > 0 && z > 0 && z <= m.far_depth) {
+    } else if (m.by_box || (m.far_depth > 0 && z > 0 && z <= m.far_depth)) {
       hidden = true;
     }
     if (hidden && (!inside_same_class || *inside_same_class)) return true;
