@@ -1,22 +1,12 @@
 #include "apps/compare_summary.h"
 
-#include <cstdio>
+#include <spdlog/fmt/fmt.h>
+
 #include <functional>
-#include <type_traits>
 
 namespace wardmap::apps {
 
 namespace {
-
-// printf into a string, doubles only: the argument count follows the format, and anything but a
-// double (which "%f" and "%g" would read wrongly) fails to compile.
-template <typename... Args>
-std::string format(const char* fmt, Args... args) {
-  static_assert((std::is_same_v<Args, double> && ...), "format() takes doubles only");
-  char buf[256];
-  std::snprintf(buf, sizeof buf, fmt, args...);
-  return buf;
-}
 
 // "  what: N of M", then the sequences for which `met` is false, with `why` of each.
 std::string count_line(const std::vector<CompareRow>& rows, const std::string& what,
@@ -38,14 +28,16 @@ std::string count_line(const std::vector<CompareRow>& rows, const std::string& w
 
 std::string format_compare_summary(const std::vector<CompareRow>& rows, const CompareTargets& targets) {
   if (rows.empty()) return {};
-  const auto accuracy = [](const CompareRow& r) { return format("%.2f %%", r.hierarchical.association_accuracy); };
+  const auto accuracy = [](const CompareRow& r) {
+    return fmt::format("{:.2f} %", r.hierarchical.association_accuracy);
+  };
   const auto against_baseline = [](const CompareRow& r) {
-    return format("%.2f against %.2f %%", r.hierarchical.association_accuracy, r.hdp_only.association_accuracy);
+    return fmt::format("{:.2f} against {:.2f} %", r.hierarchical.association_accuracy, r.hdp_only.association_accuracy);
   };
   std::string s = "hierarchical association on " + std::to_string(rows.size()) + " sequence" +
                   (rows.size() == 1 ? "" : "s") + ":\n";
   s += count_line(
-      rows, format("accuracy >= %g %%", targets.min_accuracy),
+      rows, fmt::format("accuracy >= {:g} %", targets.min_accuracy),
       [&](const CompareRow& r) { return r.hierarchical.association_accuracy >= targets.min_accuracy; }, accuracy);
   s += count_line(
       rows, "object count equal to Object_GT",
@@ -54,9 +46,9 @@ std::string format_compare_summary(const std::vector<CompareRow>& rows, const Co
         return std::to_string(r.hierarchical.landmarks) + " for " + std::to_string(r.hierarchical.objects_seen);
       });
   s += count_line(
-      rows, format("mean position error <= %g m", targets.max_position_error),
+      rows, fmt::format("mean position error <= {:g} m", targets.max_position_error),
       [&](const CompareRow& r) { return r.hierarchical.position_error_mean <= targets.max_position_error; },
-      [](const CompareRow& r) { return format("%.3f m", r.hierarchical.position_error_mean); });
+      [](const CompareRow& r) { return fmt::format("{:.3f} m", r.hierarchical.position_error_mean); });
   // Two runs at 100 % cannot differ in accuracy: those ties are counted apart, with their
   // position errors.
   const auto tied = [](const CompareRow& r) {
@@ -79,7 +71,8 @@ std::string format_compare_summary(const std::vector<CompareRow>& rows, const Co
       rows, "mean position error smaller than HDP-only's",
       [](const CompareRow& r) { return r.hierarchical.position_error_mean < r.hdp_only.position_error_mean; },
       [](const CompareRow& r) {
-        return format("%.3f against %.3f m", r.hierarchical.position_error_mean, r.hdp_only.position_error_mean);
+        return fmt::format("{:.3f} against {:.3f} m", r.hierarchical.position_error_mean,
+                           r.hdp_only.position_error_mean);
       });
   double acc = 0, acc_hdp = 0, err = 0, err_hdp = 0;
   for (const auto& r : rows) {
@@ -88,8 +81,8 @@ std::string format_compare_summary(const std::vector<CompareRow>& rows, const Co
     err += r.hierarchical.position_error_mean / rows.size();
     err_hdp += r.hdp_only.position_error_mean / rows.size();
   }
-  s += format("  means, hierarchical / HDP-only: accuracy %.2f / %.2f %%, position error %.3f / %.3f m\n", acc, acc_hdp,
-              err, err_hdp);
+  s += fmt::format("  means, hierarchical / HDP-only: accuracy {:.2f} / {:.2f} %, position error {:.3f} / {:.3f} m\n",
+                   acc, acc_hdp, err, err_hdp);
   return s;
 }
 
