@@ -126,7 +126,8 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
     slam::io::blame_overrides(job.settings_overrides,
                               [&] { settings = slam::io::load_settings(job.settings, job.settings_overrides); });
   if (settings) {
-    slam::io::fit_calibration_size(*settings, info.width, info.height, job.settings_overrides);
+    slam::io::fit_settings_camera(*settings, info.width, info.height, info.calibration, info.calibration_source,
+                                  job.settings_overrides);
     warn_settings_notes(*settings);
     setup->settings_notes = settings->notes;
   }

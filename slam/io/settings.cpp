@@ -1,6 +1,9 @@
 #include "slam/io/settings.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -301,8 +304,45 @@ std::optional<std::string> fit_calibration_size(PinholeCamera& camera, int width
          " (by at most 2 % or 2 pixels a side): the images' size is used";
 }
 
-void fit_calibration_size(Settings& settings, int width, int height, const std::vector<SettingOverride>& overrides) {
+namespace {
+
+std::array<double, 5> distortion_of(const PinholeCamera& c) { return {c.k1, c.k2, c.p1, c.p2, c.k3}; }
+
+std::string describe_intrinsics(const PinholeCamera& c, bool with_distortion) {
+  char buf[256];
+  int n = std::snprintf(buf, sizeof buf, "fx %.3f fy %.3f cx %.3f cy %.3f", c.fx, c.fy, c.cx, c.cy);
+  if (with_distortion && n > 0 && static_cast<size_t>(n) < sizeof buf)
+    std::snprintf(buf + n, sizeof buf - static_cast<size_t>(n), " k1 %g k2 %g p1 %g p2 %g k3 %g", c.k1, c.k2, c.p1,
+                  c.p2, c.k3);
+  return buf;
+}
+
+}  // namespace
+
+std::optional<std::string> calibration_disagreement(const PinholeCamera& used, const std::string& used_source,
+                                                    const PinholeCamera& carried, const std::string& carried_source) {
+  const auto focal_off = [](double a, double b) { return std::abs(a - b) > kCalibrationFocalTolerance * std::abs(b); };
+  const auto centre_off = [](double a, double b) { return std::abs(a - b) > kCalibrationCentreTolerancePixels; };
+  bool differs = focal_off(used.fx, carried.fx) || focal_off(used.fy, carried.fy) || centre_off(used.cx, carried.cx) ||
+                 centre_off(used.cy, carried.cy);
+  const auto du = distortion_of(used), dc = distortion_of(carried);
+  for (size_t i = 0; i < du.size(); ++i) differs = differs || std::abs(du[i] - dc[i]) > kCalibrationDistortionTolerance;
+  if (!differs) return std::nullopt;
+  const bool with_distortion = used.has_distortion() || carried.has_distortion();
+  return used_source + ": the camera (" + describe_intrinsics(used, with_distortion) +
+         ") differs from the calibration the sequence carries (" + carried_source + ": " +
+         describe_intrinsics(carried, with_distortion) + "); the settings' camera is used";
+}
+
+void fit_settings_camera(Settings& settings, int width, int height, const std::optional<PinholeCamera>& carried,
+                         const std::string& carried_source, const std::vector<SettingOverride>& overrides) {
   if (auto note = fit_calibration_size(settings.camera.camera, width, height, settings.file.string(), overrides))
+    settings.notes.push_back(*note);
+  if (!carried) return;
+  std::string used_source = settings.file.string();
+  for (const SettingOverride& o : overrides)
+    if (o.key.rfind("Camera", 0) == 0) used_source += " with --set " + o.key + "=" + o.value;
+  if (auto note = calibration_disagreement(settings.camera.camera, used_source, *carried, carried_source))
     settings.notes.push_back(*note);
 }
 

@@ -31,7 +31,8 @@ struct Settings {
   // Top-level keys that look meant to change something but are not read: a misspelling of a key
   // wardmap reads, an ORB-SLAM3 key of processing wardmap does not do (a resized image, a stereo
   // rig's second camera). Each names its key and line; a run logs them as warnings. Also the note of
-  // fit_calibration_size when the images' size replaced a slightly different one.
+  // fit_calibration_size when the images' size replaced a slightly different one, and that of
+  // calibration_disagreement when the sequence carries another camera.
   std::vector<std::string> notes;
   // A wardmap section (e.g. "tracking"); an undefined node when absent.
   YAML::Node section(const std::string& name) const { return root[name]; }
@@ -73,9 +74,28 @@ inline constexpr int kCalibrationSizeTolerancePixels = 2;
 std::optional<std::string> fit_calibration_size(PinholeCamera& camera, int width, int height, const std::string& source,
                                                 const std::vector<SettingOverride>& overrides = {},
                                                 const std::string& size_keys = "Camera.width/height");
-// The same for a settings file's camera, at the file (or the --set that gave the size): the note
-// joins `settings.notes`, which a run warns about and records.
-void fit_calibration_size(Settings& settings, int width, int height, const std::vector<SettingOverride>& overrides);
+
+// A note when a settings file's camera (`used`, from `used_source`) disagrees with the calibration
+// the sequence itself carries (`carried`: 7-Scenes' camera-intrinsics.txt, KITTI's calib.txt,
+// EuRoC's sensor.yaml, a synthetic sequence's settings.yaml): a focal length off by more than
+// kCalibrationFocalTolerance of the carried one, a principal point by more than
+// kCalibrationCentreTolerancePixels, or a distortion coefficient by more than
+// kCalibrationDistortionTolerance. The note gives both cameras and says the settings' is used: a
+// file for another camera is the usual cause, but a deliberate one (7Scenes-colour.yaml) is
+// allowed. Both cameras are taken at the images' size (after fit_calibration_size).
+inline constexpr double kCalibrationFocalTolerance = 0.005;
+inline constexpr double kCalibrationCentreTolerancePixels = 2.0;
+inline constexpr double kCalibrationDistortionTolerance = 1e-3;
+std::optional<std::string> calibration_disagreement(const PinholeCamera& used, const std::string& used_source,
+                                                    const PinholeCamera& carried, const std::string& carried_source);
+
+// Both checks of a settings file's camera against the sequence it is used on: fit_calibration_size
+// at the file (or the --set that gave the size), then calibration_disagreement against the
+// sequence's own calibration when it carries one (`--set Camera1.*` named beside the file; a
+// synthetic sequence's settings.yaml, which is also its calibration, agrees with itself unless
+// such a --set changes it). Their notes join `settings.notes`, which a run warns about and records.
+void fit_settings_camera(Settings& settings, int width, int height, const std::optional<PinholeCamera>& carried,
+                         const std::string& carried_source, const std::vector<SettingOverride>& overrides);
 
 // Loads and validates, with `overrides` set over the file's keys first; accepts OpenCV's `%YAML:1.0`
 // header. Throws InputError naming the file and the key (and the line for YAML syntax errors).

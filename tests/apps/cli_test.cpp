@@ -197,6 +197,33 @@ TEST(CliBadInput, WrongCalibrationSize) {
       "do not match the sequence's images 64x48");
 }
 
+// A settings file whose camera is not the one the sequence carries (a TUM file on a 7-Scenes
+// recording) is used, with a note naming both; `info` shows it, as a run warns and records it.
+TEST(CliInfo, SettingsCameraAgainstTheSequencesCalibration) {
+  const fs::path root = scratch_dir();
+  make_seven_scenes(root / "seq");  // camera-intrinsics.txt: fx = fy = 585, cx 32, cy 24
+  const fs::path settings = root / "s.yaml";
+  write_fixture_settings(settings);  // fx = fy = 50
+  const std::string info = "info " + shq(root / "seq") + " --settings " + shq(settings);
+  CliResult r = wardmap_cli(info);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("s.yaml: the camera (fx 50.000 fy 50.000 cx 32.000 cy 24.000) differs from the calibration "
+                          "the sequence carries ("),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("camera-intrinsics.txt: fx 585.000 fy 585.000 cx 32.000 cy 24.000); the settings' camera is "
+                          "used"),
+            std::string::npos)
+      << r.output;
+  r = wardmap_cli(info + " --set Camera1.fx=585 --set Camera1.fy=585");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output.find("differs from the calibration"), std::string::npos) << r.output;
+  r = wardmap_cli(info + " --set Camera1.fx=585");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("s.yaml with --set Camera1.fx=585: the camera (fx 585.000 fy 50.000"), std::string::npos)
+      << r.output;
+}
+
 // `wardmap info --settings` reads a settings file as `wardmap run` would: a key of the tracking,
 // semantics or detection sections that run refuses is refused here too, and --set is checked with
 // the rest (without --settings, over the sequence's own settings.yaml).

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "slam/core/errors.h"
 #include "tests/support/test_support.h"
 
@@ -209,6 +211,66 @@ TEST(Settings, CalibrationSizeOffByAPixelIsTakenFromTheImages) {
               "s.yaml: Camera.width/height 640x480 are close to the sequence's images 630x480, but on them: cx must "
               "lie inside the image width 630 (got 639.5)");
   }
+}
+
+// A settings file's camera against the calibration the sequence carries: within half a percent of
+// focal length and 2 pixels of principal point they agree; further off, or with other distortion,
+// a note gives both and says which is used.
+TEST(Settings, CalibrationDisagreementWithTheSequences) {
+  PinholeCamera carried;
+  carried.width = 640;
+  carried.height = 480;
+  carried.fx = carried.fy = 585;
+  carried.cx = 320;
+  carried.cy = 240;
+  PinholeCamera used = carried;
+  used.fx = 587.5;  // 0.43 % off
+  used.cy = 241.9;
+  EXPECT_EQ(calibration_disagreement(used, "s.yaml", carried, "camera-intrinsics.txt"), std::nullopt);
+  used.fx = 588.0;  // 0.51 % off
+  auto note = calibration_disagreement(used, "s.yaml", carried, "camera-intrinsics.txt");
+  ASSERT_TRUE(note.has_value());
+  EXPECT_EQ(*note,
+            "s.yaml: the camera (fx 588.000 fy 585.000 cx 320.000 cy 241.900) differs from the calibration the "
+            "sequence carries (camera-intrinsics.txt: fx 585.000 fy 585.000 cx 320.000 cy 240.000); the settings' "
+            "camera is used");
+  used = carried;
+  used.cx = 322.5;
+  EXPECT_TRUE(calibration_disagreement(used, "s.yaml", carried, "c.txt").has_value());
+  // The same pinhole with another distortion: both distortions are shown.
+  used = carried;
+  used.k1 = 0.262383;
+  note = calibration_disagreement(used, "TUM1.yaml", carried, "c.txt");
+  ASSERT_TRUE(note.has_value());
+  EXPECT_NE(note->find("(fx 585.000 fy 585.000 cx 320.000 cy 240.000 k1 0.262383 k2 0 p1 0 p2 0 k3 0)"),
+            std::string::npos)
+      << *note;
+  EXPECT_NE(note->find("(c.txt: fx 585.000 fy 585.000 cx 320.000 cy 240.000 k1 0 k2 0 p1 0 p2 0 k3 0)"),
+            std::string::npos)
+      << *note;
+  used.k1 = 0.0005;  // within 1e-3
+  EXPECT_EQ(calibration_disagreement(used, "s.yaml", carried, "c.txt"), std::nullopt);
+}
+
+// fit_settings_camera: the note joins the settings' notes, naming a --set of the camera beside the
+// file; the file the sequence's calibration came from agrees with itself unless a --set changes it.
+TEST(Settings, FitSettingsCameraNotesAnotherCalibration) {
+  const auto dir = test::scratch_dir();
+  const auto file = dir / "s.yaml";
+  std::ofstream(file) << "Camera1.fx: 50.0\nCamera1.fy: 50.0\nCamera1.cx: 32.0\nCamera1.cy: 24.0\n"
+                        "Camera.width: 64\nCamera.height: 48\n";
+  PinholeCamera carried = load_settings(file).camera.camera;
+  Settings s = load_settings(file);
+  fit_settings_camera(s, 64, 48, carried, (dir / "camera-intrinsics.txt").string(), {});
+  EXPECT_TRUE(s.notes.empty());
+  fit_settings_camera(s, 64, 48, std::nullopt, "", {});
+  EXPECT_TRUE(s.notes.empty());
+  const std::vector<SettingOverride> set = {parse_setting_override("Camera1.fx=55")};
+  s = load_settings(file, set);
+  fit_settings_camera(s, 64, 48, carried, "camera-intrinsics.txt", set);
+  ASSERT_EQ(s.notes.size(), 1u);
+  EXPECT_EQ(s.notes[0].rfind(file.string() + " with --set Camera1.fx=55: the camera (fx 55.000 fy 50.000", 0), 0u)
+      << s.notes[0];
 }
 
 TEST(Settings, ShippedFilesLoad) {
