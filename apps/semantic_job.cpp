@@ -126,8 +126,9 @@ std::unique_ptr<SemanticSetup> prepare_semantic_job(const SemanticJob& job) {
     slam::io::blame_overrides(job.settings_overrides,
                               [&] { settings = slam::io::load_settings(job.settings, job.settings_overrides); });
   if (settings) {
-    slam::io::fit_settings_camera(*settings, info.width, info.height, info.calibration, info.calibration_source,
-                                  job.settings_overrides);
+    slam::io::fit_settings_to_sequence(*settings, info, job.settings_overrides);
+    // As a SLAM run does: the settings' depth factor over the format's (noted when they differ).
+    if (settings->camera.depth_map_factor) reader->set_depth_factor(*settings->camera.depth_map_factor);
     warn_settings_notes(*settings);
     setup->settings_notes = settings->notes;
   }

@@ -216,8 +216,7 @@ double run_slam_job(const SlamJob& job) {
     settings = slam::io::load_settings(settings_file, job.settings_overrides);
     options = slam::load_front_options(settings);
   });
-  slam::io::fit_settings_camera(settings, info.width, info.height, info.calibration, info.calibration_source,
-                                job.settings_overrides);
+  slam::io::fit_settings_to_sequence(settings, info, job.settings_overrides);
   warn_settings_notes(settings);
   if (settings.camera.depth_map_factor) reader->set_depth_factor(*settings.camera.depth_map_factor);
   const std::string mode = job.mode.empty() ? (info.has_depth ? "rgbd" : "mono") : job.mode;

@@ -60,7 +60,7 @@ void run_info(const InfoArgs& a) {
   std::optional<slam::io::Settings> settings;
   if (!settings_file.empty()) {
     settings = check_settings(settings_file, overrides);
-    slam::io::fit_settings_camera(*settings, in.width, in.height, in.calibration, in.calibration_source, overrides);
+    slam::io::fit_settings_to_sequence(*settings, in, overrides);
   }
 
   std::string calib;

@@ -274,6 +274,23 @@ std::unique_ptr<SequenceReader> open_sequence(const fs::path& path, const Reader
   return reader;
 }
 
+void fit_settings_to_sequence(Settings& settings, const SequenceInfo& info, const std::vector<SettingOverride>& overrides) {
+  if (auto note = fit_calibration_size(settings.camera.camera, info.width, info.height, settings.file.string(), overrides))
+    settings.notes.push_back(*note);
+  std::string used_source = settings.file.string();
+  for (const SettingOverride& o : overrides)
+    if (o.key.rfind("Camera", 0) == 0) used_source += " with --set " + o.key + "=" + o.value;
+  if (info.calibration)
+    if (auto note =
+            calibration_disagreement(settings.camera.camera, used_source, *info.calibration, info.calibration_source))
+      settings.notes.push_back(*note);
+  std::error_code ec;  // a file that cannot be looked up is not the sequence's own
+  if (info.has_depth && settings.camera.depth_map_factor && !fs::equivalent(settings.file, info.root / "settings.yaml", ec))
+    if (auto note = depth_factor_disagreement(*settings.camera.depth_map_factor, settings.file.string(),
+                                              info.depth_factor, to_string(info.kind)))
+      settings.notes.push_back(*note);
+}
+
 std::unique_ptr<SequenceReader> open_by_kind(DatasetKind kind, const fs::path& path, const ReaderOptions& options) {
   switch (kind) {
     case DatasetKind::TumRgbd: return open_tum(path, options);

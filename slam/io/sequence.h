@@ -14,6 +14,7 @@
 
 #include "slam/core/camera.h"
 #include "slam/core/trajectory.h"
+#include "slam/io/settings.h"
 
 namespace wardmap::slam::io {
 
@@ -142,6 +143,15 @@ DatasetKind detect_dataset_kind(const std::filesystem::path& path);
 // the <kind> sequence <folder>: give that folder, ...", for the errors and notes that a path meant as
 // that sequence gets; else "".
 std::string enclosing_dataset_hint(const std::filesystem::path& path);
+
+// The checks of a settings file against the sequence it is used on, their notes joining
+// `settings.notes` (a run warns about them and records them): fit_calibration_size at the file (or
+// the --set that gave the size); calibration_disagreement against the calibration the sequence
+// carries, when it carries one (a --set Camera* named beside the file; a synthetic sequence's
+// settings.yaml, also its calibration, agrees with itself unless such a --set changes it); and
+// depth_factor_disagreement against the depth factor of the sequence's format, unless the file is
+// the sequence's own settings.yaml.
+void fit_settings_to_sequence(Settings& settings, const SequenceInfo& info, const std::vector<SettingOverride>& overrides);
 
 // One per layout (sequence_*.cpp).
 std::unique_ptr<SequenceReader> open_tum(const std::filesystem::path& root, const ReaderOptions& o);

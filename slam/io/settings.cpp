@@ -334,16 +334,13 @@ std::optional<std::string> calibration_disagreement(const PinholeCamera& used, c
          describe_intrinsics(carried, with_distortion) + "); the settings' camera is used";
 }
 
-void fit_settings_camera(Settings& settings, int width, int height, const std::optional<PinholeCamera>& carried,
-                         const std::string& carried_source, const std::vector<SettingOverride>& overrides) {
-  if (auto note = fit_calibration_size(settings.camera.camera, width, height, settings.file.string(), overrides))
-    settings.notes.push_back(*note);
-  if (!carried) return;
-  std::string used_source = settings.file.string();
-  for (const SettingOverride& o : overrides)
-    if (o.key.rfind("Camera", 0) == 0) used_source += " with --set " + o.key + "=" + o.value;
-  if (auto note = calibration_disagreement(settings.camera.camera, used_source, *carried, carried_source))
-    settings.notes.push_back(*note);
+std::optional<std::string> depth_factor_disagreement(double used, const std::string& used_source, double format_factor,
+                                                     const std::string& format) {
+  if (format_factor <= 0 || std::abs(used - format_factor) <= 0.01 * format_factor) return std::nullopt;
+  char buf[160];
+  std::snprintf(buf, sizeof buf, ": RGBD.DepthMapFactor %g differs from the %g raw units per metre of the ", used,
+                format_factor);
+  return used_source + buf + format + " format; the settings' factor is used";
 }
 
 namespace {

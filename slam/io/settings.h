@@ -31,8 +31,8 @@ struct Settings {
   // Top-level keys that look meant to change something but are not read: a misspelling of a key
   // wardmap reads, an ORB-SLAM3 key of processing wardmap does not do (a resized image, a stereo
   // rig's second camera). Each names its key and line; a run logs them as warnings. Also the note of
-  // fit_calibration_size when the images' size replaced a slightly different one, and that of
-  // calibration_disagreement when the sequence carries another camera.
+  // fit_calibration_size when the images' size replaced a slightly different one, and those of
+  // calibration_disagreement and depth_factor_disagreement (fit_settings_to_sequence).
   std::vector<std::string> notes;
   // A wardmap section (e.g. "tracking"); an undefined node when absent.
   YAML::Node section(const std::string& name) const { return root[name]; }
@@ -89,13 +89,13 @@ inline constexpr double kCalibrationDistortionTolerance = 1e-3;
 std::optional<std::string> calibration_disagreement(const PinholeCamera& used, const std::string& used_source,
                                                     const PinholeCamera& carried, const std::string& carried_source);
 
-// Both checks of a settings file's camera against the sequence it is used on: fit_calibration_size
-// at the file (or the --set that gave the size), then calibration_disagreement against the
-// sequence's own calibration when it carries one (`--set Camera1.*` named beside the file; a
-// synthetic sequence's settings.yaml, which is also its calibration, agrees with itself unless
-// such a --set changes it). Their notes join `settings.notes`, which a run warns about and records.
-void fit_settings_camera(Settings& settings, int width, int height, const std::optional<PinholeCamera>& carried,
-                         const std::string& carried_source, const std::vector<SettingOverride>& overrides);
+// A note when a settings file's RGBD.DepthMapFactor (`used`) is more than 1 % off the factor the
+// sequence's format defines (`format_factor`, raw units per metre: 7-Scenes' millimetres 1000, TUM
+// RGB-D's 5000). The settings' factor is used (a recording in TUM's layout may have its own), but
+// a file for another dataset is the usual cause, and the first frame's depth check does not catch
+// every such factor (TUM1.yaml's 5000 on 7-Scenes puts its kitchen at 0.3-0.6 m).
+std::optional<std::string> depth_factor_disagreement(double used, const std::string& used_source, double format_factor,
+                                                     const std::string& format);
 
 // Loads and validates, with `overrides` set over the file's keys first; accepts OpenCV's `%YAML:1.0`
 // header. Throws InputError naming the file and the key (and the line for YAML syntax errors).

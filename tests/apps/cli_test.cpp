@@ -222,6 +222,13 @@ TEST(CliInfo, SettingsCameraAgainstTheSequencesCalibration) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("s.yaml with --set Camera1.fx=585: the camera (fx 585.000 fy 50.000"), std::string::npos)
       << r.output;
+  // TUM's depth factor on a 7-Scenes recording (millimetres).
+  r = wardmap_cli(info + " --set RGBD.DepthMapFactor=5000");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("s.yaml: RGBD.DepthMapFactor 5000 differs from the 1000 raw units per metre of the 7-Scenes "
+                          "format; the settings' factor is used"),
+            std::string::npos)
+      << r.output;
 }
 
 // `wardmap info --settings` reads a settings file as `wardmap run` would: a key of the tracking,

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "slam/core/errors.h"
+#include "slam/io/sequence.h"
 #include "tests/support/test_support.h"
 
 namespace wardmap::slam::io {
@@ -252,25 +253,48 @@ TEST(Settings, CalibrationDisagreementWithTheSequences) {
   EXPECT_EQ(calibration_disagreement(used, "s.yaml", carried, "c.txt"), std::nullopt);
 }
 
-// fit_settings_camera: the note joins the settings' notes, naming a --set of the camera beside the
-// file; the file the sequence's calibration came from agrees with itself unless a --set changes it.
-TEST(Settings, FitSettingsCameraNotesAnotherCalibration) {
+// fit_settings_to_sequence: the notes join the settings' notes, a --set of the camera named beside
+// the file; a depth factor other than the format's is noted unless the file is the sequence's own.
+TEST(Settings, FitSettingsToSequenceNotesAnotherCalibrationAndDepthFactor) {
   const auto dir = test::scratch_dir();
   const auto file = dir / "s.yaml";
   std::ofstream(file) << "Camera1.fx: 50.0\nCamera1.fy: 50.0\nCamera1.cx: 32.0\nCamera1.cy: 24.0\n"
-                        "Camera.width: 64\nCamera.height: 48\n";
-  PinholeCamera carried = load_settings(file).camera.camera;
+                        "Camera.width: 64\nCamera.height: 48\nRGBD.DepthMapFactor: 1000.0\n";
+  SequenceInfo info;
+  info.kind = DatasetKind::SevenScenes;
+  info.root = dir / "seq";
+  info.width = 64;
+  info.height = 48;
+  info.has_depth = true;
+  info.depth_factor = 1000.0;
+  info.calibration = load_settings(file).camera.camera;
+  info.calibration_source = (info.root / "camera-intrinsics.txt").string();
   Settings s = load_settings(file);
-  fit_settings_camera(s, 64, 48, carried, (dir / "camera-intrinsics.txt").string(), {});
+  fit_settings_to_sequence(s, info, {});
   EXPECT_TRUE(s.notes.empty());
-  fit_settings_camera(s, 64, 48, std::nullopt, "", {});
-  EXPECT_TRUE(s.notes.empty());
-  const std::vector<SettingOverride> set = {parse_setting_override("Camera1.fx=55")};
+  const std::vector<SettingOverride> set = {parse_setting_override("Camera1.fx=55"),
+                                            parse_setting_override("RGBD.DepthMapFactor=5000")};
   s = load_settings(file, set);
-  fit_settings_camera(s, 64, 48, carried, "camera-intrinsics.txt", set);
-  ASSERT_EQ(s.notes.size(), 1u);
+  fit_settings_to_sequence(s, info, set);
+  ASSERT_EQ(s.notes.size(), 2u);
   EXPECT_EQ(s.notes[0].rfind(file.string() + " with --set Camera1.fx=55: the camera (fx 55.000 fy 50.000", 0), 0u)
       << s.notes[0];
+  EXPECT_EQ(s.notes[1], file.string() +
+                            ": RGBD.DepthMapFactor 5000 differs from the 1000 raw units per metre of the 7-Scenes "
+                            "format; the settings' factor is used");
+  // Within 1 %, or no depth: nothing.
+  EXPECT_EQ(depth_factor_disagreement(1005, "s.yaml", 1000, "7-Scenes"), std::nullopt);
+  info.has_depth = false;
+  s = load_settings(file, {set[1]});
+  fit_settings_to_sequence(s, info, {set[1]});
+  EXPECT_TRUE(s.notes.empty());
+  // The sequence's own settings.yaml (a recording in TUM's layout with its own factor).
+  info.has_depth = true;
+  std::filesystem::create_directories(info.root);
+  std::filesystem::copy_file(file, info.root / "settings.yaml");
+  s = load_settings(info.root / "settings.yaml", {set[1]});
+  fit_settings_to_sequence(s, info, {set[1]});
+  EXPECT_TRUE(s.notes.empty());
 }
 
 TEST(Settings, ShippedFilesLoad) {
