@@ -65,10 +65,7 @@ void run_info(const InfoArgs& a) {
 
   std::string calib;
   if (in.calibration) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "fx %.3f fy %.3f cx %.3f cy %.3f (from %s)", in.calibration->fx, in.calibration->fy,
-                  in.calibration->cx, in.calibration->cy, in.calibration_source.c_str());
-    calib = buf;
+    calib = slam::io::describe_intrinsics(*in.calibration) + " (from " + in.calibration_source + ")";
   } else if (settings) {
     calib = "from " + settings_file.string();
   } else {

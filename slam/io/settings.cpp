@@ -308,6 +308,8 @@ namespace {
 
 std::array<double, 5> distortion_of(const PinholeCamera& c) { return {c.k1, c.k2, c.p1, c.p2, c.k3}; }
 
+}  // namespace
+
 std::string describe_intrinsics(const PinholeCamera& c, bool with_distortion) {
   char buf[256];
   int n = std::snprintf(buf, sizeof buf, "fx %.3f fy %.3f cx %.3f cy %.3f", c.fx, c.fy, c.cx, c.cy);
@@ -316,8 +318,6 @@ std::string describe_intrinsics(const PinholeCamera& c, bool with_distortion) {
                   c.p2, c.k3);
   return buf;
 }
-
-}  // namespace
 
 std::optional<std::string> calibration_disagreement(const PinholeCamera& used, const std::string& used_source,
                                                     const PinholeCamera& carried, const std::string& carried_source) {

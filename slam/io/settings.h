@@ -83,6 +83,8 @@ std::optional<std::string> fit_calibration_size(PinholeCamera& camera, int width
 // kCalibrationDistortionTolerance. The note gives both cameras and says the settings' is used: a
 // file for another camera is the usual cause, but a deliberate one (7Scenes-colour.yaml) is
 // allowed. Both cameras are taken at the images' size (after fit_calibration_size).
+// "fx 585.000 fy 585.000 cx 320.000 cy 240.000", with " k1 ... k3" when `with_distortion`.
+std::string describe_intrinsics(const PinholeCamera& camera, bool with_distortion = false);
 inline constexpr double kCalibrationFocalTolerance = 0.005;
 inline constexpr double kCalibrationCentreTolerancePixels = 2.0;
 inline constexpr double kCalibrationDistortionTolerance = 1e-3;

@@ -9,6 +9,21 @@
 #include "tests/support/test_support.h"
 
 namespace wardmap::slam::io {
+
+namespace {
+
+// A distortion-free camera with fx = fy = f.
+PinholeCamera pinhole(int width, int height, double f, double cx, double cy) {
+  PinholeCamera c;
+  c.width = width;
+  c.height = height;
+  c.fx = c.fy = f;
+  c.cx = cx;
+  c.cy = cy;
+  return c;
+}
+
+}  // namespace
 namespace {
 
 std::string error_of(const std::string& yaml) {
@@ -155,12 +170,7 @@ TEST(Settings, ErrorsNameTheKey) {
 
 // The calibration's image size against the sequence's, blamed on the --set that changed it.
 TEST(Settings, CalibrationSizeChecked) {
-  PinholeCamera c;
-  c.width = 640;
-  c.height = 480;
-  c.cx = 320;
-  c.cy = 240;
-  c.fx = c.fy = 500;
+  PinholeCamera c = pinhole(640, 480, 500, 320, 240);
   EXPECT_EQ(fit_calibration_size(c, 640, 480, "s.yaml"), std::nullopt);
   const auto error_of = [&](const std::vector<SettingOverride>& set) {
     try {
@@ -182,12 +192,7 @@ TEST(Settings, CalibrationSizeChecked) {
 // ORB-SLAM3's KITTI03.yaml says 1241x376 for 1242x375 images: a size within 2 % of each side is
 // taken from the images, with a note; the principal point must still lie inside.
 TEST(Settings, CalibrationSizeOffByAPixelIsTakenFromTheImages) {
-  PinholeCamera c;
-  c.width = 1241;
-  c.height = 376;
-  c.fx = c.fy = 721.5377;
-  c.cx = 609.5593;
-  c.cy = 172.854;
+  PinholeCamera c = pinhole(1241, 376, 721.5377, 609.5593, 172.854);
   const auto note = fit_calibration_size(c, 1242, 375, "KITTI03.yaml");
   ASSERT_TRUE(note.has_value());
   EXPECT_EQ(*note,
@@ -218,12 +223,7 @@ TEST(Settings, CalibrationSizeOffByAPixelIsTakenFromTheImages) {
 // focal length and 2 pixels of principal point they agree; further off, or with other distortion,
 // a note gives both and says which is used.
 TEST(Settings, CalibrationDisagreementWithTheSequences) {
-  PinholeCamera carried;
-  carried.width = 640;
-  carried.height = 480;
-  carried.fx = carried.fy = 585;
-  carried.cx = 320;
-  carried.cy = 240;
+  const PinholeCamera carried = pinhole(640, 480, 585, 320, 240);
   PinholeCamera used = carried;
   used.fx = 587.5;  // 0.43 % off
   used.cy = 241.9;
