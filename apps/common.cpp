@@ -166,4 +166,23 @@ void warn_settings_notes(const slam::io::Settings& settings) {
     if (warned.insert(note).second) spdlog::warn("{}", note);
 }
 
+void UnreadableFrames::add(const FrameReadError& e, double timestamp) {
+  list_.push_back({{"frame", e.frame()}, {"timestamp", timestamp}, {"file", e.file()}, {"problem", e.problem()}});
+  if (list_.size() <= kShown)
+    spdlog::warn("frame {} skipped: {}{}", e.frame(), e.what(),
+                 list_.size() == kShown ? " (further unreadable frames are counted at the end of the run)" : "");
+  else
+    spdlog::debug("frame {} skipped: {}", e.frame(), e.what());
+}
+
+std::string UnreadableFrames::summary() const {
+  if (list_.empty()) return "no frame skipped";
+  const nlohmann::json& first = list_.front();
+  std::string s = std::to_string(list_.size()) + (list_.size() == 1 ? " frame" : " frames") +
+                  " skipped, unreadable: frame " + std::to_string(first["frame"].get<size_t>()) + " (" +
+                  first["file"].get<std::string>() + ": " + first["problem"].get<std::string>() + ")";
+  if (list_.size() > 1) s += " and " + std::to_string(list_.size() - 1) + " more (report.json's unreadable_frames)";
+  return s;
+}
+
 }  // namespace wardmap::apps

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "slam/core/errors.h"
 #include "slam/eval/trajectory_eval.h"
 #include "slam/io/sequence.h"
 #include "slam/io/settings.h"
@@ -54,6 +55,26 @@ nlohmann::json scale_drift_json(const slam::eval::ScaleDriftResult& drift);
 void add_set_option(CLI::App* cmd, std::vector<std::string>& texts, const std::string& use);
 // The --set texts parsed (slam::io::parse_setting_override), in order.
 std::vector<slam::io::SettingOverride> parse_set_options(const std::vector<std::string>& texts);
+// The frames a run skipped because their file does not decode or is unlike the first frame
+// (FrameReadError, from SequenceReader::read once the sequence is open): the run goes on as after a
+// dropped frame instead of losing what it has done. Each is warned, the first kShown in full, then
+// one line per frame at debug level; report.json lists them all ("unreadable_frames").
+class UnreadableFrames {
+ public:
+  static constexpr size_t kShown = 5;
+  void add(const FrameReadError& e, double timestamp);
+  bool empty() const { return list_.empty(); }
+  size_t size() const { return list_.size(); }
+  // [{"frame", "timestamp", "file", "problem"}, ...], in the order met.
+  const nlohmann::json& to_json() const { return list_; }
+  // "3 frames skipped, unreadable: frame 196 (FILE: PROBLEM) and 2 more (report.json's
+  // unreadable_frames)", for report.md and the run's end.
+  std::string summary() const;
+
+ private:
+  nlohmann::json list_ = nlohmann::json::array();
+};
+
 // Logs a warning for each of the settings' notes (keys not read that look meant), each once per
 // process: a SLAM run with --objects and `compare` read one file more than once.
 void warn_settings_notes(const slam::io::Settings& settings);

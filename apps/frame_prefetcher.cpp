@@ -4,6 +4,8 @@
 #include <string>
 #include <utility>
 
+#include "slam/core/errors.h"
+
 namespace wardmap::apps {
 
 FramePrefetcher::FramePrefetcher(slam::io::SequenceReader& reader, size_t ahead)
@@ -20,13 +22,16 @@ FramePrefetcher::~FramePrefetcher() {
 void FramePrefetcher::run() {
   for (size_t i = 0; i < reader_.size(); ++i) {
     Item item;
+    bool fatal = false;
     try {
       item.frame = reader_.read(i);
+    } catch (const FrameReadError&) {
+      item.error = std::current_exception();  // this frame only: the next ones are read
     } catch (...) {
       item.error = std::current_exception();
+      fatal = true;
     }
-    const bool failed = item.error != nullptr;
-    if (!queue_.push(std::move(item)) || failed) break;  // closed, or nothing after an error
+    if (!queue_.push(std::move(item)) || fatal) break;  // closed, or nothing after that error
   }
   queue_.close();  // what is queued can still be taken
 }
@@ -34,15 +39,31 @@ void FramePrefetcher::run() {
 slam::io::Frame FramePrefetcher::next() {
   if (taken_ >= reader_.size())
     throw std::out_of_range("FramePrefetcher::next: all " + std::to_string(reader_.size()) + " frames were taken");
-  if (!threaded_) {
-    slam::io::Frame f = reader_.read(taken_);
-    ++taken_;
-    return f;
-  }
   if (error_) std::rethrow_exception(error_);  // the frame that failed fails again, as a direct read
+  if (!threaded_) {
+    try {
+      return reader_.read(taken_++);
+    } catch (const FrameReadError&) {
+      throw;  // this frame only: the next call reads the next one
+    } catch (...) {
+      --taken_;
+      error_ = std::current_exception();
+      throw;
+    }
+  }
   std::optional<Item> item = queue_.pop();
   if (!item) throw std::logic_error("FramePrefetcher::next: the reading thread stopped early");
-  if (item->error) std::rethrow_exception(error_ = item->error);
+  if (item->error) {
+    try {
+      std::rethrow_exception(item->error);
+    } catch (const FrameReadError&) {
+      ++taken_;
+      throw;
+    } catch (...) {
+      error_ = item->error;
+      throw;
+    }
+  }
   ++taken_;
   return std::move(*item->frame);
 }

@@ -1,8 +1,9 @@
 // Decodes a sequence's frames on a thread of its own, a few frames ahead of the one being tracked,
 // so that an offline run does not wait for the PNG decoder between frames (the decode of a 640x480
 // colour + depth pair costs about as much as tracking it). Frames come out in order, each exactly
-// as SequenceReader::read gives it; a read error (missing or unreadable file) is thrown by next()
-// at the frame it concerns, as a direct read would. With `ahead` = 0 there is no thread: next()
+// as SequenceReader::read gives it; a read error is thrown by next() at the frame it concerns, as a
+// direct read would. After a FrameReadError (one frame that does not decode) the next call gives the
+// next frame; after any other error every later call throws it again. With `ahead` = 0 there is no thread: next()
 // reads on the caller's (for threaded runs, whose tracker and mapper already keep both cores busy).
 #pragma once
 
@@ -25,7 +26,8 @@ class FramePrefetcher {
   FramePrefetcher(const FramePrefetcher&) = delete;
   FramePrefetcher& operator=(const FramePrefetcher&) = delete;
 
-  // The next frame, in order; throws the read's error at that frame; std::out_of_range past the end.
+  // The next frame, in order; throws the read's error at that frame (a FrameReadError skips the
+  // frame); std::out_of_range past the end.
   slam::io::Frame next();
 
  private:
@@ -39,7 +41,7 @@ class FramePrefetcher {
   bool threaded_;
   slam::BoundedQueue<Item> queue_;
   size_t taken_ = 0;
-  std::exception_ptr error_;  // a read that failed: thrown again by every later next()
+  std::exception_ptr error_;  // a read that failed, not a FrameReadError: thrown again by every later next()
   std::thread thread_;
 };
 

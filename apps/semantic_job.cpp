@@ -286,11 +286,21 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
       const auto& pose = reader->gt_pose(i);
       if (!pose) continue;
       trajectory.push_back(reader->timestamp(i), *pose);
+      const semantics::KeyframeSelector before = selector;
       if (!selector.accept(*pose)) continue;
-      const slam::io::Frame f = reader->read(i);
+      slam::io::Frame f;
+      try {
+        f = reader->read(i);
+      } catch (const FrameReadError& e) {  // skipped: the next frame is judged against the last keyframe
+        run.unreadable.add(e, reader->timestamp(i));
+        selector = before;
+        continue;
+      }
       mapper.add_keyframe({f.timestamp, f.image, f.depth, *pose});
     }
     progress.finish();
+    if (!run.unreadable.empty())
+      spdlog::warn("{}: {}; the run went on without them", job.sequence.string(), run.unreadable.summary());
   }
   run.result = mapper.build_map();
   run.measurements = mapper.measurements();
@@ -382,12 +392,14 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
     report["settings"] = job.settings.string();     // empty: the defaults
     report["settings_overrides"] = overrides_json(job.settings_overrides);
     report["settings_notes"] = setup->settings_notes;
+    if (own_run) report["unreadable_frames"] = run.unreadable.to_json();  // a SLAM run's report has its own
     std::string md =
         "# wardmap run\n\n- sequence: `" + job.sequence.string() +
         "`\n- poses: " + (own_run ? "ground truth" : "SLAM keyframes") + "\n- detector: " + setup->detector_kind +
         "\n- association: " + options.association.mode +
         "\n- settings: " + (job.settings.empty() ? std::string("the defaults") : "`" + job.settings.string() + "`") +
         overrides_text(job.settings_overrides) + "\n" + settings_notes_text(setup->settings_notes) +
+        (run.unreadable.empty() ? std::string() : "- " + run.unreadable.summary() + ": no keyframe taken there\n") +
         (run.interrupted ? "- interrupted (" + signal_name(run.interrupted) + ") after frame " +
                                std::to_string(run.frames_processed) + " of " + std::to_string(run.frames) +
                                ": the figures below are for those frames\n"

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "apps/common.h"
 #include "semantics/detection/detector_options.h"
 #include "semantics/object_association.h"
 #include "semantics/object_metrics.h"
@@ -101,6 +102,8 @@ struct SemanticRun {
   // SemanticJob::interruptible: the signal that stopped the run (0: none) and the frames read by then.
   int interrupted = 0;
   int frames_processed = 0;
+  // --poses gt: the keyframe candidates skipped because their frame could not be read.
+  UnreadableFrames unreadable;
   // Monocular SLAM: metres per map unit, and how many detections gave it (0: none; no poses then).
   std::optional<double> metric_scale;
   int scale_estimates = 0;

@@ -81,7 +81,7 @@ void log_tracking_event(const slam::FrameResult& r, std::string_view status, std
 size_t unlocalise_discarded(std::vector<std::string>& statuses, size_t first) {
   size_t n = 0;
   for (size_t k = first; k < statuses.size(); ++k)
-    if (statuses[k] != "lost" && statuses[k] != "initialising") statuses[k] = "lost", ++n;
+    if (statuses[k] != "lost" && statuses[k] != "initialising" && statuses[k] != "unreadable") statuses[k] = "lost", ++n;
   return n;
 }
 
@@ -248,6 +248,7 @@ double run_slam_job(const SlamJob& job) {
   std::vector<int> submap_of;
   size_t submap_first_row = 0;    // the active submap's first frame
   size_t discarded_submaps = 0;   // submaps discarded (tracking.discard_submap_keyframes)
+  UnreadableFrames unreadable;    // frames skipped (statuses "unreadable")
   char line[160];
   // Objects: keyframe images are detected (and embedded) on a thread of their own while the SLAM
   // runs; measurement and association wait for the final keyframe poses. --deterministic: after.
@@ -271,7 +272,16 @@ double run_slam_job(const SlamJob& job) {
   for (size_t i = 0; i < reader->size(); ++i) {
     if ((interrupted = InterruptScope::requested())) break;
     progress.update(i + 1);
-    const slam::io::Frame frame = frames.next();
+    slam::io::Frame frame;
+    try {
+      frame = frames.next();
+    } catch (const FrameReadError& e) {  // as a dropped frame: the tracker never sees it
+      unreadable.add(e, reader->timestamp(i));
+      statuses.emplace_back("unreadable");
+      submap_of.push_back(submap_of.empty() ? 0 : submap_of.back());
+      stamps.push_back(reader->timestamp(i));
+      continue;
+    }
     if (i == 0 && !frame.depth.empty())
       warn_if_depth_looks_off(job.sequence, frame.depth, reader->info().depth_factor, options.tracking.max_depth);
     if (job.realtime) {  // the frame is delivered at its own time, measured from the first one's
@@ -323,6 +333,7 @@ double run_slam_job(const SlamJob& job) {
   if (interrupted)
     spdlog::warn("{}: stopped after frame {} of {}; writing the run folder for those frames{} (again to quit at once)",
                  signal_name(interrupted), processed, reader->size(), job.objects ? ", without objects" : "");
+  if (!unreadable.empty()) spdlog::warn("{}: {}; the run went on without them", job.sequence.string(), unreadable.summary());
   front.finish();
   interrupt_scope.reset();
   for (size_t k = 0; k < stamps.size(); ++k) {
@@ -358,6 +369,7 @@ double run_slam_job(const SlamJob& job) {
   report["first_frame"] = reader->first_frame();  // of the stretch run (--first-frame)
   report["settings_overrides"] = overrides_json(job.settings_overrides);  // --set KEY=VALUE, in order
   report["settings_notes"] = settings.notes;                              // keys that look meant but are not read
+  report["unreadable_frames"] = unreadable.to_json();                     // skipped, "unreadable" in frames.csv
   if (interrupted) report["interrupted"] = signal_name(interrupted);
   {
     // What local mapping did, over the run (all submaps).
@@ -380,6 +392,7 @@ double run_slam_job(const SlamJob& job) {
                    (discarded_submaps ? " (and " + std::to_string(discarded_submaps) + " discarded, too small to keep)" : "") + "\n";
   md += "- settings: `" + settings_file.string() + "`" + overrides_text(job.settings_overrides) + "\n" +
         settings_notes_text(settings.notes);
+  if (!unreadable.empty()) md += "- " + unreadable.summary() + ": not tracked\n";
   if (interrupted)
     md += "- interrupted (" + signal_name(interrupted) + ") after frame " + std::to_string(processed) + " of " +
           std::to_string(reader->size()) + ": the figures below are for those frames\n";

@@ -63,6 +63,17 @@ cv::Mat load_depth(const fs::path& file, double factor, int invalid) {
 }
 
 Frame SequenceReader::read(size_t i) {
+  if (i >= entries_.size())
+    throw std::out_of_range("frame " + std::to_string(i) + " is past the sequence's end (" +
+                            std::to_string(entries_.size()) + " frames)");
+  try {
+    return read_entry(i);
+  } catch (const InputError& e) {
+    throw FrameReadError(e, i);
+  }
+}
+
+Frame SequenceReader::read_entry(size_t i) {
   const Entry& e = entries_.at(i);
   Frame f;
   f.index = i;

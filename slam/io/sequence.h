@@ -74,8 +74,9 @@ class SequenceReader {
   double timestamp(size_t i) const { return entries_.at(i).timestamp; }
   // Ground-truth pose of frame i without decoding it.
   const std::optional<SE3>& gt_pose(size_t i) const { return entries_.at(i).gt_pose; }
-  // Decodes frame i; throws InputError naming the image file when it is missing or unreadable.
-  virtual Frame read(size_t i);
+  // Decodes frame i; throws FrameReadError (slam/core/errors.h), naming the file, when it cannot be
+  // decoded or is unlike the sequence's first frame; std::out_of_range past the end.
+  Frame read(size_t i);
   // Whether read() decodes the depth images (default true). A monocular run does not use them, and
   // decoding a 16-bit PNG costs about as much as the colour image; Frame::depth is then empty.
   void set_decode_depth(bool decode) { decode_depth_ = decode; }
@@ -101,6 +102,9 @@ class SequenceReader {
   size_t first_frame() const { return first_frame_; }
 
  protected:
+  // read()'s work for one layout (i is in range); throws InputError.
+  virtual Frame read_entry(size_t i);
+
   struct Entry {
     double timestamp = 0;
     std::filesystem::path image, depth;

@@ -81,8 +81,7 @@ class VideoReader : public SequenceReader {
     info_.duration = entries_.size() / info_.fps;
   }
 
-  Frame read(size_t i) override {
-    if (i >= entries_.size()) throw InputError(file_.string(), "frame " + std::to_string(i) + " is past the end");
+  Frame read_entry(size_t i) override {
     const size_t pos = first_frame_ + i;  // in the video (keep_frames)
     if (pos != next_) {
       cap_.set(cv::CAP_PROP_POS_FRAMES, static_cast<double>(pos));

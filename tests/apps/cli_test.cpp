@@ -929,6 +929,84 @@ TEST(CliPipeline, InterruptedSynthLeavesNothing) {
 
 // eval-objects scores a run folder as the run itself did, refuses a run of another sequence, and
 // compare checks every sequence for object ground truth before its table starts.
+// Frames whose files are cut short (a recording that crashed, a disk error) are skipped as dropped
+// frames, named in a warning, in frames.csv and in report.json; the run goes on and writes its folder
+// instead of stopping at the first one. --poses gt skips such a keyframe candidate the same way.
+TEST(CliPipeline, UnreadableFramesAreSkippedAndListed) {
+  const fs::path dir = scratch_dir();
+  ASSERT_EQ(wardmap_cli("-q synth --scenario ward --variant slow --frames 60 --out " + shq(dir / "seq")).code, 0);
+  // The colour image of frame 30 and the depth image of frame 40, named by the sequence's lists.
+  const auto listed = [&](const char* list, int frame) {
+    std::ifstream in(dir / "seq" / list);
+    std::string line;
+    int k = -1;
+    while (std::getline(in, line))
+      if (!line.empty() && line[0] != '#' && ++k == frame) return dir / "seq" / line.substr(line.find(' ') + 1);
+    return fs::path();
+  };
+  const fs::path colour = listed("rgb.txt", 30), depth = listed("depth.txt", 40);
+  ASSERT_FALSE(colour.empty());
+  ASSERT_FALSE(depth.empty());
+  const std::string png = read_all(colour);
+  write_text(colour, png.substr(0, png.size() / 3));  // a PNG cut short
+  write_text(depth, "not a png");
+
+  const CliResult r = wardmap_cli("run " + shq(dir / "seq") + " --deterministic --out " + shq(dir / "run"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("frame 30 skipped: " + colour.string() + ": cannot decode the image"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("2 frames skipped, unreadable: frame 30"), std::string::npos) << r.output;
+  std::ifstream in(dir / "run" / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  const nlohmann::json& skipped = report.at("unreadable_frames");
+  ASSERT_EQ(skipped.size(), 2u) << report.dump();
+  EXPECT_EQ(skipped[0].at("frame").get<int>(), 30);
+  EXPECT_EQ(skipped[0].at("file").get<std::string>(), colour.string());
+  EXPECT_EQ(skipped[1].at("frame").get<int>(), 40);
+  EXPECT_EQ(skipped[1].at("file").get<std::string>(), depth.string());
+  EXPECT_EQ(skipped[1].at("problem").get<std::string>(), "cannot decode the depth image");
+  EXPECT_EQ(report.at("frames_processed").get<int>(), 60);
+  // Every other frame tracked, in one submap, as accurately as ever.
+  EXPECT_EQ(report.at("submaps").get<int>(), 1);
+  EXPECT_NEAR(report.at("tracking_rate").get<double>(), 100.0 * 58 / 60, 1e-3) << report.dump();
+  EXPECT_LT(report.at("ate_se3").at("rmse").get<double>(), 0.02) << report.dump();
+  const std::string frames = read_all(dir / "run" / "frames.csv");
+  EXPECT_EQ(std::count(frames.begin(), frames.end(), '\n'), 61) << "a header and one line per frame";
+  size_t unreadable = 0;
+  for (size_t at = frames.find(",unreadable,"); at != std::string::npos; at = frames.find(",unreadable,", at + 1))
+    ++unreadable;
+  EXPECT_EQ(unreadable, 2u) << frames;
+  EXPECT_NE(read_all(dir / "run" / "report.md").find("- 2 frames skipped, unreadable: frame 30 ("), std::string::npos);
+
+  // On ground-truth poses only keyframe candidates are read. Frame 0 is always one: with its depth
+  // image broken too it is skipped, and frame 1 is judged against no keyframe, so taken in its place.
+  const fs::path first_depth = listed("depth.txt", 0);
+  write_text(first_depth, "not a png");
+  const CliResult gt = wardmap_cli("run " + shq(dir / "seq") + " --poses gt --no-baseline --out " + shq(dir / "gt"));
+  ASSERT_EQ(gt.code, 0) << gt.output;
+  EXPECT_NE(gt.output.find("frame 0 skipped: " + first_depth.string() + ": cannot decode the depth image"),
+            std::string::npos)
+      << gt.output;
+  std::ifstream gin(dir / "gt" / "report.json");
+  const nlohmann::json gt_report = nlohmann::json::parse(gin);
+  const nlohmann::json& gt_skipped = gt_report.at("unreadable_frames");
+  ASSERT_FALSE(gt_skipped.empty()) << gt_report.dump();
+  EXPECT_EQ(gt_skipped[0].at("frame").get<int>(), 0);
+  for (const auto& f : gt_skipped) {  // and any other candidate that fell on a broken frame
+    const int frame = f.at("frame").get<int>();
+    EXPECT_TRUE(frame == 0 || frame == 30 || frame == 40) << gt_report.dump();
+  }
+  std::ifstream kin(dir / "gt" / "keyframes.txt");
+  std::string first_keyframe;
+  std::getline(kin, first_keyframe);
+  std::ifstream rgb(dir / "seq" / "rgb.txt");
+  std::string line, frame1;
+  for (int k = -1; k < 1 && std::getline(rgb, line);)
+    if (!line.empty() && line[0] != '#' && ++k == 1) frame1 = line.substr(0, line.find(' '));
+  EXPECT_EQ(first_keyframe.substr(0, first_keyframe.find(' ')), frame1) << "frame 1 is the first keyframe";
+  EXPECT_GT(gt_report.at("keyframes").get<int>(), 3);
+}
+
 // --set KEY=VALUE changes a setting for one run, over the sequence's settings file, and the run
 // records it; a wrong one stops the run before it starts, naming the --set.
 TEST(CliPipeline, SetOverridesASettingForOneRun) {

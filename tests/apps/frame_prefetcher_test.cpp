@@ -1,5 +1,6 @@
 // The run's frame prefetcher (apps/frame_prefetcher.h): frames in order and as a direct read gives
-// them, a read error thrown at the frame it concerns, and no hang when the run stops early.
+// them, a read error thrown at the frame it concerns (the frames after it still given), and no hang
+// when the run stops early.
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -46,10 +47,33 @@ TEST_P(FramePrefetcherAhead, ThrowsTheReadErrorAtItsFrame) {
   try {
     frames.next();
     FAIL() << "the broken frame was returned";
-  } catch (const InputError& e) {
+  } catch (const FrameReadError& e) {
     EXPECT_NE(std::string(e.what()).find("000001.png"), std::string::npos) << e.what();
+    EXPECT_EQ(e.frame(), 1u);
   }
-  EXPECT_THROW(frames.next(), InputError);  // again, rather than a later frame or a hang
+  // That frame only: the run goes on with the next ones, in order, and then ends.
+  for (size_t i = 2; i < reader->size(); ++i) EXPECT_EQ(frames.next().index, i);
+  EXPECT_THROW(frames.next(), std::out_of_range);
+}
+
+TEST_P(FramePrefetcherAhead, SkipsUnreadableFramesOneAfterAnotherUpToTheEnd) {
+  const fs::path root = test::scratch_dir();
+  test::make_kitti(root);
+  auto reader = slam::io::open_sequence(root);
+  ASSERT_EQ(reader->size(), 3u);
+  for (const char* name : {"000001.png", "000002.png"})
+    test::write_text(root / "sequences" / "05" / "image_0" / name, "cut short");
+  FramePrefetcher frames(*reader, GetParam());
+  EXPECT_EQ(frames.next().index, 0u);
+  for (size_t i = 1; i <= 2; ++i) {
+    try {
+      frames.next();
+      FAIL() << "frame " << i << " was returned";
+    } catch (const FrameReadError& e) {
+      EXPECT_EQ(e.frame(), i);
+    }
+  }
+  EXPECT_THROW(frames.next(), std::out_of_range);
 }
 
 INSTANTIATE_TEST_SUITE_P(InlineAndThreaded, FramePrefetcherAhead, ::testing::Values(0, 1, 2));

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
 #include "slam/core/errors.h"
@@ -494,8 +495,30 @@ TEST(BadInput, UnreadableImage) {
   try {
     r->read(1);
     FAIL() << "no error";
-  } catch (const InputError& e) {
+  } catch (const FrameReadError& e) {  // one frame: a run skips it
     EXPECT_EQ(std::string(e.what()), (root / "frame-000001.color.png").string() + ": cannot decode the image (corrupt or not an image)");
+    EXPECT_EQ(e.frame(), 1u);
+    EXPECT_EQ(e.file(), (root / "frame-000001.color.png").string());
+    EXPECT_EQ(e.problem(), "cannot decode the image (corrupt or not an image)");
+  }
+  EXPECT_EQ(r->read(2).index, 2u);  // the frames after it still read
+  EXPECT_THROW(r->read(r->size()), std::out_of_range);  // past the end: the caller's mistake, no frame's
+}
+
+// A frame unlike the first (another size) found only when read: a FrameReadError of that frame.
+TEST(BadInput, FrameOfAnotherSizeIsThatFramesError) {
+  const fs::path root = scratch_dir();
+  test::make_seven_scenes(root);
+  auto r = open_sequence(root);
+  cv::imwrite((root / "frame-000002.color.png").string(), cv::Mat(10, 12, CV_8UC3, cv::Scalar::all(80)));
+  try {
+    r->read(2);
+    FAIL() << "no error";
+  } catch (const FrameReadError& e) {
+    EXPECT_EQ(e.frame(), 2u);
+    EXPECT_NE(std::string(e.what()).find("frame-000002.color.png: image is 12x10, the sequence's first image is"),
+              std::string::npos)
+        << e.what();
   }
 }
 
