@@ -282,7 +282,7 @@ double run_slam_job(const SlamJob& job) {
       stamps.push_back(reader->timestamp(i));
       continue;
     }
-    if (i == 0 && !frame.depth.empty())
+    if (statuses.size() == unreadable.size() && !frame.depth.empty())  // the first frame read
       warn_if_depth_looks_off(job.sequence, frame.depth, reader->info().depth_factor, options.tracking.max_depth);
     if (job.realtime) {  // the frame is delivered at its own time, measured from the first one's
       if (!clock_start) clock_start.emplace(std::chrono::steady_clock::now(), frame.timestamp);

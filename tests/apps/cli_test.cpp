@@ -1004,6 +1004,11 @@ TEST(CliPipeline, UnreadableFramesAreSkippedAndListed) {
   for (int k = -1; k < 1 && std::getline(rgb, line);)
     if (!line.empty() && line[0] != '#' && ++k == 1) frame1 = line.substr(0, line.find(' '));
   EXPECT_EQ(first_keyframe.substr(0, first_keyframe.find(' ')), frame1) << "frame 1 is the first keyframe";
+
+  // The depth factor is still checked, on the first depth image read (frame 1's).
+  const CliResult factor = wardmap_cli("run " + shq(dir / "seq") + " --deterministic --frames 5 --set RGBD.DepthMapFactor=500 --out " +
+                                       shq(dir / "factor"));
+  EXPECT_NE(factor.output.find("the first depth image's median depth is"), std::string::npos) << factor.output;
   EXPECT_GT(gt_report.at("keyframes").get<int>(), 3);
 }
 
