@@ -175,6 +175,10 @@ void UnreadableFrames::add(const FrameReadError& e, double timestamp) {
     spdlog::debug("frame {} skipped: {}", e.frame(), e.what());
 }
 
+void UnreadableFrames::warn_summary(const std::filesystem::path& sequence) const {
+  if (!list_.empty()) spdlog::warn("{}: {}; the run went on without them", sequence.string(), summary());
+}
+
 std::string UnreadableFrames::summary() const {
   if (list_.empty()) return "no frame skipped";
   const nlohmann::json& first = list_.front();

@@ -70,6 +70,8 @@ class UnreadableFrames {
   // "3 frames skipped, unreadable: frame 196 (FILE: PROBLEM) and 2 more (report.json's
   // unreadable_frames)", for report.md and the run's end.
   std::string summary() const;
+  // At the run's end: the summary as a warning on `sequence`, when any frame was skipped.
+  void warn_summary(const std::filesystem::path& sequence) const;
 
  private:
   nlohmann::json list_ = nlohmann::json::array();

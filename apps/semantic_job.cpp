@@ -299,8 +299,7 @@ SemanticRun run_semantic_job(const SemanticJob& job) {
       mapper.add_keyframe({f.timestamp, f.image, f.depth, *pose});
     }
     progress.finish();
-    if (!run.unreadable.empty())
-      spdlog::warn("{}: {}; the run went on without them", job.sequence.string(), run.unreadable.summary());
+    run.unreadable.warn_summary(job.sequence);
   }
   run.result = mapper.build_map();
   run.measurements = mapper.measurements();

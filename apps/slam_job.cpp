@@ -333,7 +333,7 @@ double run_slam_job(const SlamJob& job) {
   if (interrupted)
     spdlog::warn("{}: stopped after frame {} of {}; writing the run folder for those frames{} (again to quit at once)",
                  signal_name(interrupted), processed, reader->size(), job.objects ? ", without objects" : "");
-  if (!unreadable.empty()) spdlog::warn("{}: {}; the run went on without them", job.sequence.string(), unreadable.summary());
+  unreadable.warn_summary(job.sequence);
   front.finish();
   interrupt_scope.reset();
   for (size_t k = 0; k < stamps.size(); ++k) {
