@@ -19,18 +19,23 @@ FramePrefetcher::~FramePrefetcher() {
   thread_.join();
 }
 
+FramePrefetcher::Item FramePrefetcher::read_item(size_t i) {
+  Item item;
+  try {
+    item.frame = reader_.read(i);
+  } catch (const FrameReadError&) {
+    item.error = std::current_exception();  // this frame only: the next ones are read
+  } catch (...) {
+    item.error = std::current_exception();
+    item.fatal = true;
+  }
+  return item;
+}
+
 void FramePrefetcher::run() {
   for (size_t i = 0; i < reader_.size(); ++i) {
-    Item item;
-    bool fatal = false;
-    try {
-      item.frame = reader_.read(i);
-    } catch (const FrameReadError&) {
-      item.error = std::current_exception();  // this frame only: the next ones are read
-    } catch (...) {
-      item.error = std::current_exception();
-      fatal = true;
-    }
+    Item item = read_item(i);
+    const bool fatal = item.fatal;
     if (!queue_.push(std::move(item)) || fatal) break;  // closed, or nothing after that error
   }
   queue_.close();  // what is queued can still be taken
@@ -40,32 +45,18 @@ slam::io::Frame FramePrefetcher::next() {
   if (taken_ >= reader_.size())
     throw std::out_of_range("FramePrefetcher::next: all " + std::to_string(reader_.size()) + " frames were taken");
   if (error_) std::rethrow_exception(error_);  // the frame that failed fails again, as a direct read
+  Item item;
   if (!threaded_) {
-    try {
-      return reader_.read(taken_++);
-    } catch (const FrameReadError&) {
-      throw;  // this frame only: the next call reads the next one
-    } catch (...) {
-      --taken_;
-      error_ = std::current_exception();
-      throw;
-    }
+    item = read_item(taken_);
+  } else {
+    std::optional<Item> queued = queue_.pop();
+    if (!queued) throw std::logic_error("FramePrefetcher::next: the reading thread stopped early");
+    item = std::move(*queued);
   }
-  std::optional<Item> item = queue_.pop();
-  if (!item) throw std::logic_error("FramePrefetcher::next: the reading thread stopped early");
-  if (item->error) {
-    try {
-      std::rethrow_exception(item->error);
-    } catch (const FrameReadError&) {
-      ++taken_;
-      throw;
-    } catch (...) {
-      error_ = item->error;
-      throw;
-    }
-  }
-  ++taken_;
-  return std::move(*item->frame);
+  if (item.fatal) std::rethrow_exception(error_ = item.error);
+  ++taken_;  // a FrameReadError skips its frame: the next call gives the next one
+  if (item.error) std::rethrow_exception(item.error);
+  return std::move(*item.frame);
 }
 
 }  // namespace wardmap::apps

@@ -34,7 +34,9 @@ class FramePrefetcher {
   struct Item {
     std::optional<slam::io::Frame> frame;
     std::exception_ptr error;
+    bool fatal = false;  // an error other than FrameReadError: nothing is read after it
   };
+  Item read_item(size_t i);  // reader_.read(i), its error kept
   void run();
 
   slam::io::SequenceReader& reader_;
